@@ -1,0 +1,39 @@
+// Geometry and material numbers of the paper's box test (Lu & McDowell 2007, §3;
+// McDowell et al. box: 700 × 300 × 450 mm, rubber base). SI units.
+#pragma once
+
+#include "engine/material.hpp"
+#include "engine/types.hpp"
+
+namespace ballast::box_test {
+
+inline constexpr double kLength = 0.700;  // m, x
+inline constexpr double kWidth = 0.300;   // m, y
+inline constexpr double kHeight = 0.450;  // m, z
+
+inline constexpr double kBallStiffness = 5.08e9;    // N/m, kn = ks for balls, sleeper, walls
+inline constexpr double kRubberStiffness = 2.54e6;  // N/m, kn = ks for the rubber base
+inline constexpr double kDensity = 2600.0;          // kg/m³
+inline constexpr double kFrictionCompaction = 0.3;
+inline constexpr double kFrictionLoading = 0.5;
+inline constexpr double kSphereDiameter = 0.03625;  // m, the 1,936 spheres of Fig. 9a
+inline constexpr int kSphereCount = 1936;
+
+inline Material ballast_material(double mu = kFrictionCompaction) {
+  return {kBallStiffness, kBallStiffness, mu};
+}
+inline Material wall_material(double mu = kFrictionCompaction) {
+  return {kBallStiffness, kBallStiffness, mu};
+}
+inline Material rubber_base(double mu = kFrictionCompaction) {
+  return {kRubberStiffness, kRubberStiffness, mu};
+}
+
+inline Vec3 box_lo() {
+  return Vec3::Zero();
+}
+inline Vec3 box_hi() {
+  return Vec3(kLength, kWidth, kHeight);
+}
+
+}  // namespace ballast::box_test

@@ -1,0 +1,66 @@
+#include "cases/sphere_packing.hpp"
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+namespace ballast {
+
+std::vector<Vec3> random_loose_packing(int count, double radius, const Vec3& lo, const Vec3& hi,
+                                       double volume_fraction, std::uint64_t seed) {
+  if (count < 0)
+    throw std::invalid_argument("sphere count = " + std::to_string(count) + " (allowed: >= 0)");
+  if (!(radius > 0.0))
+    throw std::invalid_argument("sphere radius = " + std::to_string(radius) + " (allowed: > 0 m)");
+  if (!(volume_fraction > 0.0 && volume_fraction <= 0.35))
+    throw std::invalid_argument("volume_fraction = " + std::to_string(volume_fraction) +
+                                " (allowed: (0, 0.35]; random addition jams above that)");
+  const double sphere_volume = 4.0 / 3.0 * kPi * radius * radius * radius;
+  const double area = (hi.x() - lo.x()) * (hi.y() - lo.y());
+  const double top = lo.z() + 2.0 * radius + count * sphere_volume / (volume_fraction * area);
+  if (top > hi.z() || hi.x() - lo.x() < 2 * radius || hi.y() - lo.y() < 2 * radius)
+    throw std::invalid_argument(
+        "sphere count = " + std::to_string(count) +
+        " does not fit: it needs the region to reach z = " + std::to_string(top) + " m");
+  const Vec3 a = lo + Vec3::Constant(radius);
+  const Vec3 b(hi.x() - radius, hi.y() - radius, top - radius);
+
+  // Grid of cells of one diameter: a new sphere only needs checking against the 27
+  // cells around it.
+  const double cell = 2.0 * radius;
+  int n[3];
+  for (int k = 0; k < 3; ++k) n[k] = std::max(1, static_cast<int>((b[k] - a[k]) / cell) + 1);
+  std::vector<std::vector<int>> grid(static_cast<std::size_t>(n[0]) * n[1] * n[2]);
+  auto coord = [&](const Vec3& p, int k) {
+    return std::clamp(static_cast<int>((p[k] - a[k]) / cell), 0, n[k] - 1);
+  };
+
+  std::mt19937_64 rng(seed);
+  std::vector<Vec3> out;
+  out.reserve(count);
+  const long max_tries = 1000L * count + 1000;
+  for (long tries = 0; static_cast<int>(out.size()) < count; ++tries) {
+    if (tries > max_tries)
+      throw std::invalid_argument("sphere count = " + std::to_string(count) +
+                                  ": random addition could not place them all");
+    Vec3 p;
+    for (int k = 0; k < 3; ++k) p[k] = a[k] + (b[k] - a[k]) * unit_uniform(rng());
+    const int cx = coord(p, 0), cy = coord(p, 1), cz = coord(p, 2);
+    bool free = true;
+    for (int z = std::max(0, cz - 1); free && z <= std::min(n[2] - 1, cz + 1); ++z)
+      for (int y = std::max(0, cy - 1); free && y <= std::min(n[1] - 1, cy + 1); ++y)
+        for (int x = std::max(0, cx - 1); free && x <= std::min(n[0] - 1, cx + 1); ++x)
+          for (int j : grid[x + n[0] * (y + n[1] * z)])
+            if ((out[j] - p).squaredNorm() < cell * cell) {
+              free = false;
+              break;
+            }
+    if (!free) continue;
+    grid[cx + n[0] * (cy + n[1] * cz)].push_back(static_cast<int>(out.size()));
+    out.push_back(p);
+  }
+  return out;
+}
+
+}  // namespace ballast

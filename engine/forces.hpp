@@ -1,0 +1,44 @@
+// The force loop: evaluate every candidate contact, then gather the results into
+// body forces and torques. Two passes instead of one scatter so that no two threads
+// ever add into the same number: a contact writes only its own slots, a body reads
+// only its own balls' contacts, in a fixed order. That is what makes 1 and 2
+// threads bit-identical without atomics.
+#pragma once
+
+#include <vector>
+
+#include "engine/ball_store.hpp"
+#include "engine/body_store.hpp"
+#include "engine/contact_list.hpp"
+#include "engine/material.hpp"
+#include "engine/walls.hpp"
+
+namespace ballast {
+
+struct ForceSettings {
+  double dt = 0.0;             // s
+  double damping_ratio = 0.0;  // viscous contact damping ratio β (0: none)
+  bool friction = true;        // false: frictionless scene, no shear history
+};
+
+// Ball–ball contacts: fills force, point, normal_force, works and active flags.
+void compute_ball_contacts(const BallStore& balls, const BodyStore& bodies,
+                           const std::vector<Material>& materials, const ForceSettings& s,
+                           ContactList& contacts);
+
+// Ball–wall contacts (b = wall index).
+void compute_wall_contacts(const BallStore& balls, const BodyStore& bodies,
+                           const std::vector<Material>& materials, const std::vector<Wall>& walls,
+                           const ForceSettings& s, ContactList& contacts);
+
+// Sums contact forces and gravity into each body's force and torque, and books the
+// contacts' dissipated energy on the ball that owns them (side a).
+void gather_body_forces(const ContactList& ball_contacts, const ContactList& wall_contacts,
+                        const Vec3& gravity, BallStore& balls, BodyStore& bodies);
+
+// Velocity of a body's material point at world position p (half-step velocities).
+inline Vec3 point_velocity(const BodyStore& bodies, Index body, const Vec3& p) {
+  return bodies.velocity[body] + bodies.angular_velocity[body].cross(p - bodies.position[body]);
+}
+
+}  // namespace ballast

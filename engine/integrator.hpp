@@ -1,0 +1,38 @@
+// Centred-difference (leapfrog) integration of rigid bodies, as PFC3D does it
+// (paper eqs 16–17): velocities live at half steps, positions and forces at whole
+// steps.
+//   v(t+dt/2) = v(t−dt/2) + dt·F_d(t)/m,   x(t+dt) = x(t) + dt·v(t+dt/2)
+// F_d is the resultant after PFC local damping, applied per component:
+//   F_d,i = F_i − α·|F_i|·sign(v_i)            (same for moments with ω_i)
+//
+// Rotation. A sphere has an isotropic inertia, so ω += dt·M/I with no frame
+// changes and no orientation to keep (its accumulated rotation vector Σω·dt is all
+// the paper measures). A clump integrates in its principal frame with the
+// gyroscopic term ω×Iω dropped, as PFC3D 3.x does (eq 17 with [W] = 0); its
+// orientation quaternion is advanced by the rotation ω·dt and its balls re-placed.
+#pragma once
+
+#include "engine/ball_store.hpp"
+#include "engine/body_store.hpp"
+
+namespace ballast {
+
+struct IntegratorSettings {
+  double dt = 0.0;              // s
+  double local_damping = 0.7;   // α, PFC's default
+  Vec3 gravity = Vec3::Zero();  // m/s², only for the energy ledger (force already has m·g)
+  double max_speed = 100.0;     // m/s; faster is treated as a blow-up
+};
+
+struct IntegrationReport {
+  double max_ball_shift2 = 0.0;  // m², largest squared ball move since `reference`
+  Index bad_body = kNoIndex;     // lowest-index body that went non-finite or too fast
+  bool bad_is_nan = false;       // true: non-finite; false: over max_speed
+};
+
+// Advances every body by one step and re-places its balls. `reference` holds ball
+// positions at the last neighbour build, for the skin criterion.
+IntegrationReport integrate(const IntegratorSettings& s, const std::vector<Vec3>& reference,
+                            BodyStore& bodies, BallStore& balls);
+
+}  // namespace ballast

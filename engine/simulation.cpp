@@ -1,0 +1,349 @@
+#include "engine/simulation.hpp"
+
+#include <cmath>
+#include <ostream>
+#include <sstream>
+
+#include "engine/errors.hpp"
+#include "engine/forces.hpp"
+#include "engine/integrator.hpp"
+#include "engine/timestep.hpp"
+
+namespace ballast {
+
+namespace {
+
+bool inside(const Vec3& x, const Vec3& lo, const Vec3& hi) {
+  return (x.array() >= lo.array()).all() && (x.array() <= hi.array()).all();
+}
+
+std::string vec_str(const Vec3& v) {
+  std::ostringstream s;
+  s << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
+  return s.str();
+}
+
+void validate_material(const Material& m, Index id) {
+  const std::string f = "material " + std::to_string(id) + " ";
+  require_setup(m.kn > 0.0 && std::isfinite(m.kn), f + "kn", m.kn, "> 0 N/m");
+  require_setup(m.ks >= 0.0 && std::isfinite(m.ks), f + "ks", m.ks, ">= 0 N/m");
+  require_setup(m.mu >= 0.0 && std::isfinite(m.mu), f + "mu", m.mu, ">= 0");
+}
+
+}  // namespace
+
+Simulation::Simulation(const SimulationSettings& settings) : settings_(settings) {
+  require_setup((settings_.domain_hi - settings_.domain_lo).minCoeff() > 0.0,
+                "domain extent (hi - lo, smallest)",
+                (settings_.domain_hi - settings_.domain_lo).minCoeff(), "> 0 m");
+}
+
+Index Simulation::add_material(const Material& m) {
+  validate_material(m, static_cast<Index>(materials_.size()));
+  materials_.push_back(m);
+  refresh_friction_state();
+  return static_cast<Index>(materials_.size()) - 1;
+}
+
+Index Simulation::add_sphere(const Vec3& x, double radius, double density, Index material) {
+  require_setup(radius > 0.0 && std::isfinite(radius), "sphere radius", radius, "> 0 m");
+  require_setup(density > 0.0 && std::isfinite(density), "sphere density", density, "> 0 kg/m^3");
+  const double mass = density * 4.0 / 3.0 * kPi * radius * radius * radius;
+  const double inertia = 0.4 * mass * radius * radius;
+  const double r = radius;
+  return add_clump(x, Quat::Identity(), std::span<const Vec3>{}, {&r, 1}, mass,
+                   Vec3::Constant(inertia), material);
+}
+
+Index Simulation::add_clump(const Vec3& x, const Quat& orientation, std::span<const Vec3> offsets,
+                            std::span<const double> radii, double mass,
+                            const Vec3& principal_inertia, Index material) {
+  // An empty offsets span means "one ball at the centre" (add_sphere).
+  const bool sphere = offsets.empty() && radii.size() == 1;
+  require_setup(sphere || offsets.size() == radii.size(), "clump offsets count", offsets.size(),
+                "the number of radii (" + std::to_string(radii.size()) + ")");
+  require_setup(!radii.empty(), "clump ball count", 0, ">= 1");
+  require_setup(mass > 0.0 && std::isfinite(mass), "body mass", mass, "> 0 kg");
+  require_setup(principal_inertia.minCoeff() > 0.0 && principal_inertia.allFinite(),
+                "body principal inertia (smallest)", principal_inertia.minCoeff(), "> 0 kg m^2");
+  require_setup(
+      material >= 0 && material < static_cast<Index>(materials_.size()), "ball material index",
+      material,
+      "0.." + std::to_string(static_cast<long>(materials_.size()) - 1) + " (add_material first)");
+  const Index body = bodies_.size();
+  const Index first = balls_.size();
+  const Mat3 rot = orientation.normalized().toRotationMatrix();
+  for (std::size_t k = 0; k < radii.size(); ++k) {
+    require_setup(radii[k] > 0.0 && std::isfinite(radii[k]), "ball radius", radii[k], "> 0 m");
+    const Vec3 off = sphere ? Vec3::Zero() : offsets[k];
+    const Vec3 p = x + rot * off;
+    require_setup(inside(p, settings_.domain_lo, settings_.domain_hi), "ball position", vec_str(p),
+                  "inside the domain " + vec_str(settings_.domain_lo) + " .. " +
+                      vec_str(settings_.domain_hi));
+    balls_.add(p, radii[k], body, material, off);
+    max_radius_ = std::max(max_radius_, radii[k]);
+  }
+  bodies_.add(x, orientation, mass, principal_inertia, first, static_cast<Index>(radii.size()),
+              sphere);
+  prepared_ = false;
+  return body;
+}
+
+Index Simulation::add_wall(const Wall& w) {
+  validate_wall(w);
+  walls_.push_back(w);
+  wall_force_.push_back(Vec3::Zero());
+  refresh_friction_state();
+  prepared_ = false;
+  return static_cast<Index>(walls_.size()) - 1;
+}
+
+Index Simulation::add_servo(const Servo& s) {
+  validate_servo(s, static_cast<Index>(walls_.size()));
+  for (Index w : s.walls) walls_[w].motion = WallMotion::Servo;
+  servos_.push_back(s);
+  return static_cast<Index>(servos_.size()) - 1;
+}
+
+void Simulation::set_local_damping(double alpha) {
+  require_setup(alpha >= 0.0 && alpha < 1.0, "local damping alpha", alpha, "[0, 1)");
+  settings_.local_damping = alpha;
+}
+
+void Simulation::set_damping_ratio(double beta) {
+  require_setup(beta >= 0.0 && beta < 1.0, "damping_ratio", beta, "[0, 1)");
+  settings_.damping_ratio = beta;
+  if (prepared_ && !settings_.fixed_dt) update_timestep();
+}
+
+void Simulation::set_material_friction(Index material, double mu) {
+  require_setup(material >= 0 && material < static_cast<Index>(materials_.size()), "material index",
+                material, "an existing material");
+  require_setup(mu >= 0.0 && std::isfinite(mu), "friction mu", mu, ">= 0");
+  materials_[material].mu = mu;
+  refresh_friction_state();
+}
+
+void Simulation::set_wall_friction(Index wall, double mu) {
+  require_setup(wall >= 0 && wall < static_cast<Index>(walls_.size()), "wall index", wall,
+                "an existing wall");
+  require_setup(mu >= 0.0 && std::isfinite(mu), "friction mu", mu, ">= 0");
+  walls_[wall].material.mu = mu;
+  refresh_friction_state();
+}
+
+void Simulation::set_all_friction(double mu) {
+  for (Index m = 0; m < static_cast<Index>(materials_.size()); ++m) set_material_friction(m, mu);
+  for (Index w = 0; w < static_cast<Index>(walls_.size()); ++w) set_wall_friction(w, mu);
+}
+
+void Simulation::set_wall_velocity(Index wall, const Vec3& v) {
+  require_setup(wall >= 0 && wall < static_cast<Index>(walls_.size()), "wall index", wall,
+                "an existing wall");
+  require_setup(walls_[wall].motion != WallMotion::Servo, "velocity of servo-driven wall",
+                walls_[wall].name, "a wall not under servo control");
+  walls_[wall].velocity = v;
+  walls_[wall].motion = v.isZero(0.0) ? WallMotion::Fixed : WallMotion::Prescribed;
+}
+
+void Simulation::set_body_velocity(Index body, const Vec3& v) {
+  bodies_.velocity.at(body) = v;
+}
+
+void Simulation::set_body_angular_velocity(Index body, const Vec3& w) {
+  bodies_.angular_velocity.at(body) = w;
+}
+
+bool Simulation::scene_has_friction() const {
+  for (const Material& m : materials_)
+    if (m.mu > 0.0) return true;
+  for (const Wall& w : walls_)
+    if (w.material.mu > 0.0) return true;
+  return false;
+}
+
+void Simulation::refresh_friction_state() {
+  const bool now = scene_has_friction();
+  if (now == friction_) return;
+  friction_ = now;
+  ball_contacts_.set_history(now);
+  wall_contacts_.set_history(now);
+}
+
+void Simulation::validate() const {
+  for (Index m = 0; m < static_cast<Index>(materials_.size()); ++m)
+    validate_material(materials_[m], m);
+  for (const Wall& w : walls_) validate_wall(w);
+  for (const Servo& s : servos_) validate_servo(s, static_cast<Index>(walls_.size()));
+  const auto& s = settings_;
+  require_setup(s.local_damping >= 0.0 && s.local_damping < 1.0, "local_damping", s.local_damping,
+                "[0, 1)");
+  require_setup(s.damping_ratio >= 0.0 && s.damping_ratio < 1.0, "damping_ratio", s.damping_ratio,
+                "[0, 1)");
+  require_setup(s.dt_safety > 0.0 && s.dt_safety <= 1.0, "dt_safety", s.dt_safety, "(0, 1]");
+  if (s.fixed_dt)
+    require_setup(*s.fixed_dt > 0.0 && std::isfinite(*s.fixed_dt), "dt", *s.fixed_dt, "> 0 s");
+  if (s.skin) require_setup(*s.skin > 0.0, "skin", *s.skin, "> 0 m");
+  require_setup(s.max_speed > 0.0, "max_speed", s.max_speed, "> 0 m/s");
+  require_setup(s.gravity.allFinite(), "gravity", vec_str(s.gravity), "finite");
+}
+
+void Simulation::prepare() {
+  validate();
+  if (!settings_.skin) {
+    double sum = 0.0;
+    for (double r : balls_.radius) sum += r;
+    skin_ = balls_.size() > 0 ? 0.2 * sum / balls_.size() : 1e-3;
+  } else {
+    skin_ = *settings_.skin;
+  }
+  rebuild_neighbours();
+  update_timestep();
+  prepared_ = true;
+  needs_rebuild_ = false;
+  const double ratio = dt_ / dt_critical_;
+  if (settings_.log) {
+    *settings_.log << "timestep: dt = " << dt_ << " s, critical = " << dt_critical_
+                   << " s, dt/dt_critical = " << ratio
+                   << (settings_.fixed_dt ? " (fixed)" : " (automatic)") << "\n";
+  }
+  if (settings_.fixed_dt && ratio > 1.0) {
+    std::ostringstream m;
+    m << "dt = " << dt_ << " s exceeds the critical timestep estimate " << dt_critical_
+      << " s (dt/dt_critical = " << ratio << ")";
+    if (settings_.strict_timestep) throw SetupError(m.str() + " and strict_timestep is on");
+    if (settings_.log) *settings_.log << "warning: " << m.str() << "; the run may blow up\n";
+  }
+}
+
+void Simulation::update_timestep() {
+  const TimestepEstimate est = estimate_critical_timestep(
+      balls_, bodies_, materials_, walls_, ball_contacts_, wall_contacts_, settings_.damping_ratio);
+  dt_critical_ = est.critical;
+  dt_ = settings_.fixed_dt ? *settings_.fixed_dt : settings_.dt_safety * dt_critical_;
+}
+
+void Simulation::rebuild_neighbours() {
+  const Index n = balls_.size();
+  for (Index k = 0; k < n; ++k) {
+    if (inside(balls_.position[k], settings_.domain_lo, settings_.domain_hi)) continue;
+    throw SimulationError(steps_, balls_.body[k], "position",
+                          "step " + std::to_string(steps_) + ": body " +
+                              std::to_string(balls_.body[k]) + " left the domain (ball at " +
+                              vec_str(balls_.position[k]) + ")");
+  }
+  cells_.build(balls_.position, settings_.domain_lo, settings_.domain_hi,
+               2.0 * max_radius_ + skin_);
+  std::vector<Index> a, b;
+  find_candidate_pairs(cells_, balls_.position, balls_.radius, balls_.body, skin_, a, b);
+  ball_contacts_.rebuild(std::move(a), std::move(b), friction_, n, true);
+
+  // Ball–wall candidates, in ball order then wall order (so the keys come sorted).
+  std::vector<Index> wa, wb;
+  const Index nw = static_cast<Index>(walls_.size());
+  if (nw > 0) {
+    for (Index k = 0; k < n; ++k)
+      for (Index w = 0; w < nw; ++w)
+        if (touch_wall(walls_[w], balls_.position[k], balls_.radius[k] + skin_).overlap > 0.0) {
+          wa.push_back(k);
+          wb.push_back(w);
+        }
+  }
+  wall_contacts_.rebuild(std::move(wa), std::move(wb), friction_, n, false);
+
+  reference_positions_ = balls_.position;
+  wall_reference_.resize(walls_.size());
+  for (Index w = 0; w < nw; ++w) wall_reference_[w] = walls_[w].displacement;
+  ++builds_;
+  if (prepared_ && !settings_.fixed_dt) update_timestep();
+}
+
+void Simulation::sum_wall_forces() {
+  for (Vec3& f : wall_force_) f.setZero();
+  for (Index c = 0; c < wall_contacts_.size(); ++c)
+    if (wall_contacts_.active[c]) wall_force_[wall_contacts_.b[c]] -= wall_contacts_.force[c];
+}
+
+void Simulation::drive_walls() {
+  for (Servo& s : servos_) {
+    double measured = 0.0, stiffness = 0.0;
+    for (Index w : s.walls) measured -= wall_force_[w].dot(s.axis);
+    for (Index c = 0; c < wall_contacts_.size(); ++c) {
+      if (!wall_contacts_.active[c]) continue;
+      for (Index w : s.walls)
+        if (wall_contacts_.b[c] == w)
+          stiffness += series_stiffness(materials_[balls_.material[wall_contacts_.a[c]]].kn,
+                                        walls_[w].material.kn);
+    }
+    s.measured_force = measured;
+    s.target_now = s.target_force(time_);
+    const double error = s.target_now - measured;
+    double speed = stiffness > 0.0 ? s.gain * error / (stiffness * dt_)
+                                   : (error > 0.0 ? s.max_speed : -s.max_speed);
+    speed = std::clamp(speed, -s.max_speed, s.max_speed);
+    s.speed = speed;
+    for (Index w : s.walls) walls_[w].velocity = speed * s.axis;
+  }
+  for (Index w = 0; w < static_cast<Index>(walls_.size()); ++w) {
+    // The balls feel −wall_force; the wall's surface moves by velocity·dt.
+    wall_work_ -= dt_ * wall_force_[w].dot(walls_[w].velocity);
+    advance_wall(walls_[w], dt_);
+  }
+}
+
+void Simulation::step() {
+  if (!prepared_) prepare();
+  if (needs_rebuild_) rebuild_neighbours();
+  const bool has_walls = !walls_.empty();
+  const ForceSettings fs{dt_, settings_.damping_ratio, friction_};
+  compute_ball_contacts(balls_, bodies_, materials_, fs, ball_contacts_);
+  if (has_walls) compute_wall_contacts(balls_, bodies_, materials_, walls_, fs, wall_contacts_);
+  gather_body_forces(ball_contacts_, wall_contacts_, settings_.gravity, balls_, bodies_);
+
+  const IntegratorSettings is{dt_, settings_.local_damping, settings_.gravity, settings_.max_speed};
+  const IntegrationReport r = integrate(is, reference_positions_, bodies_, balls_);
+  if (r.bad_body != kNoIndex) {
+    std::ostringstream m;
+    m << "step " << steps_ << ": body " << r.bad_body;
+    if (r.bad_is_nan) {
+      m << " velocity is not finite (NaN or Inf)";
+    } else {
+      m << " speed " << bodies_.velocity[r.bad_body].norm() << " m/s exceeds max_speed "
+        << settings_.max_speed << " m/s: kinetic energy is exploding";
+    }
+    m << " (dt = " << dt_ << " s, critical estimate " << dt_critical_ << " s)";
+    throw SimulationError(steps_, r.bad_body, r.bad_is_nan ? "velocity" : "speed", m.str());
+  }
+
+  double wall_shift2 = 0.0;
+  if (has_walls) {
+    sum_wall_forces();
+    drive_walls();
+    for (Index w = 0; w < static_cast<Index>(walls_.size()); ++w)
+      wall_shift2 =
+          std::max(wall_shift2, (walls_[w].displacement - wall_reference_[w]).squaredNorm());
+  }
+  time_ += dt_;
+  ++steps_;
+  const double half = 0.5 * skin_;
+  needs_rebuild_ = r.max_ball_shift2 > half * half || wall_shift2 > half * half;
+}
+
+void Simulation::run(long steps) {
+  for (long k = 0; k < steps; ++k) step();
+}
+
+EnergyBudget Simulation::energy() const {
+  return energy_budget(balls_, bodies_, materials_, walls_, ball_contacts_, wall_contacts_,
+                       wall_work_);
+}
+
+ContactStats Simulation::contacts() const {
+  return contact_stats(bodies_, ball_contacts_, wall_contacts_);
+}
+
+double Simulation::unbalanced_force_ratio() const {
+  return ballast::unbalanced_force_ratio(bodies_, ball_contacts_, wall_contacts_);
+}
+
+}  // namespace ballast

@@ -1,0 +1,122 @@
+// The facade a scene talks to. It owns the stores and runs the one time-step loop:
+//
+//   step():  ball–ball contacts → ball–wall contacts → gather into bodies (+gravity)
+//            → integrate (damping, leapfrog, re-place balls) → walls and servos move
+//            → rebuild neighbours if anything moved more than half the skin.
+//
+// A scene pays only for what it uses: no walls, no wall loop; no friction anywhere,
+// no shear history; spheres take the isotropic rotation path.
+#pragma once
+
+#include <iosfwd>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "engine/ball_store.hpp"
+#include "engine/body_store.hpp"
+#include "engine/cell_list.hpp"
+#include "engine/contact_list.hpp"
+#include "engine/diagnostics.hpp"
+#include "engine/material.hpp"
+#include "engine/servo.hpp"
+#include "engine/walls.hpp"
+
+namespace ballast {
+
+struct SimulationSettings {
+  Vec3 domain_lo = Vec3::Zero();  // m: every ball centre must stay in [lo, hi]
+  Vec3 domain_hi = Vec3::Ones();
+  Vec3 gravity = Vec3(0.0, 0.0, -9.81);  // m/s²
+  double local_damping = 0.7;            // PFC α; 0 switches it off
+  double damping_ratio = 0.0;            // viscous contact damping ratio β; 0: none
+  std::optional<double> fixed_dt;        // s; unset: automatic = dt_safety × critical
+  double dt_safety = 0.8;
+  bool strict_timestep = false;  // a fixed dt above critical is an error, not a warning
+  std::optional<double> skin;    // m; unset: 0.2 × mean ball radius
+  double max_speed = 100.0;      // m/s; a body faster than this means blow-up
+  std::ostream* log = nullptr;   // where the start-up report goes (nullptr: silent)
+};
+
+class Simulation {
+ public:
+  explicit Simulation(const SimulationSettings& settings);
+
+  // ---- building the scene (before the first step) ----
+  Index add_material(const Material& m);
+  Index add_sphere(const Vec3& x, double radius, double density, Index material);
+  // A rigid clump: ball offsets in its principal frame about the centre of mass,
+  // mass and principal moments already computed (see clump_mass).
+  Index add_clump(const Vec3& x, const Quat& orientation, std::span<const Vec3> offsets,
+                  std::span<const double> radii, double mass, const Vec3& principal_inertia,
+                  Index material);
+  Index add_wall(const Wall& w);
+  Index add_servo(const Servo& s);
+
+  // ---- changing conditions during a run ----
+  void set_gravity(const Vec3& g) { settings_.gravity = g; }
+  void set_local_damping(double alpha);
+  void set_damping_ratio(double beta);  // viscous contact damping; dt follows at next build
+  void set_material_friction(Index material, double mu);
+  void set_wall_friction(Index wall, double mu);
+  void set_all_friction(double mu);  // every material and wall: the paper's 0.3 → 0.5 switch
+  void set_wall_velocity(Index wall, const Vec3& v);
+  void set_body_velocity(Index body, const Vec3& v);
+  void set_body_angular_velocity(Index body, const Vec3& w);
+
+  // ---- running ----
+  // Validates the scene, builds neighbours, sets dt and prints the dt report.
+  // Called by the first step() if not called before.
+  void prepare();
+  void step();
+  void run(long steps);
+
+  // ---- reading ----
+  double time() const { return time_; }
+  long step_count() const { return steps_; }
+  double dt() const { return dt_; }
+  double critical_dt() const { return dt_critical_; }
+  double skin() const { return skin_; }
+  long neighbour_builds() const { return builds_; }
+  const SimulationSettings& settings() const { return settings_; }
+  const BodyStore& bodies() const { return bodies_; }
+  const BallStore& balls() const { return balls_; }
+  const std::vector<Wall>& walls() const { return walls_; }
+  const std::vector<Servo>& servos() const { return servos_; }
+  const std::vector<Material>& materials() const { return materials_; }
+  const ContactList& ball_contacts() const { return ball_contacts_; }
+  const ContactList& wall_contacts() const { return wall_contacts_; }
+  // Force the balls exert on wall w at the last step, N.
+  const Vec3& wall_force(Index w) const { return wall_force_[w]; }
+
+  EnergyBudget energy() const;
+  ContactStats contacts() const;
+  double unbalanced_force_ratio() const;
+
+ private:
+  void validate() const;
+  void rebuild_neighbours();
+  void update_timestep();
+  void sum_wall_forces();
+  void drive_walls();
+  bool scene_has_friction() const;
+  void refresh_friction_state();
+
+  SimulationSettings settings_;
+  std::vector<Material> materials_;
+  BallStore balls_;
+  BodyStore bodies_;
+  std::vector<Wall> walls_;
+  std::vector<Servo> servos_;
+  CellList cells_;
+  ContactList ball_contacts_, wall_contacts_;
+  std::vector<Vec3> reference_positions_;  // ball positions at the last neighbour build
+  std::vector<Vec3> wall_reference_;       // wall displacements at the last build
+  std::vector<Vec3> wall_force_;
+  double wall_work_ = 0.0;
+  double time_ = 0.0, dt_ = 0.0, dt_critical_ = 0.0, skin_ = 0.0, max_radius_ = 0.0;
+  long steps_ = 0, builds_ = 0;
+  bool prepared_ = false, friction_ = false, needs_rebuild_ = false;
+};
+
+}  // namespace ballast

@@ -1,0 +1,82 @@
+#include "engine/timestep.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace ballast {
+
+namespace {
+
+struct Stiffness {
+  double tran = 0.0, rot = 0.0;
+  void add(double kn, double ks, const Vec3& lever, const Vec3& n) {
+    tran += kn + ks;
+    rot += kn * lever.cross(n).squaredNorm() + ks * lever.squaredNorm();
+  }
+};
+
+}  // namespace
+
+TimestepEstimate estimate_critical_timestep(const BallStore& balls, const BodyStore& bodies,
+                                            const std::vector<Material>& materials,
+                                            const std::vector<Wall>& walls, const ContactList& bc,
+                                            const ContactList& wc, double damping_ratio) {
+  TimestepEstimate best;
+  best.critical = std::numeric_limits<double>::infinity();
+  const Index nb = bodies.size();
+  for (Index body = 0; body < nb; ++body) {
+    const Vec3 x = bodies.position[body];
+    Stiffness k, floor;
+    const Index first = bodies.first_ball[body], last = first + bodies.ball_count[body];
+    for (Index ball = first; ball < last; ++ball) {
+      const Material& m = materials[balls.material[ball]];
+      const Vec3 px = balls.position[ball];
+      const double r = balls.radius[ball];
+      // Floor: one contact with an identical ball, on the far side of this ball
+      // along x (a sphere's normal force then has no lever arm, as it should).
+      Stiffness one;
+      one.add(0.5 * m.kn, 0.5 * m.ks, (px - x) + r * Vec3::UnitX(), Vec3::UnitX());
+      floor.tran = std::max(floor.tran, one.tran);
+      floor.rot = std::max(floor.rot, one.rot);
+      for (Index e = bc.ball_offset[ball]; e < bc.ball_offset[ball + 1]; ++e) {
+        const Index c = bc.ball_entry[e] >> 1;
+        const Index other = (bc.ball_entry[e] & 1) ? bc.a[c] : bc.b[c];
+        const Vec3 d = px - balls.position[other];
+        const double reach = r + balls.radius[other];
+        if (d.squaredNorm() >= reach * reach) continue;
+        const Vec3 n = d.normalized();
+        const Material& mo = materials[balls.material[other]];
+        k.add(series_stiffness(m.kn, mo.kn), series_stiffness(m.ks, mo.ks), (px - x) - r * n, n);
+      }
+      for (Index e = wc.ball_offset[ball]; e < wc.ball_offset[ball + 1]; ++e) {
+        const Index c = wc.ball_entry[e] >> 1;
+        const Wall& w = walls[wc.b[c]];
+        const WallTouch t = touch_wall(w, px, r);
+        if (t.overlap <= 0.0) continue;
+        k.add(series_stiffness(m.kn, w.material.kn), series_stiffness(m.ks, w.material.ks),
+              t.point - x, t.normal);
+      }
+    }
+    k.tran = std::max(k.tran, floor.tran);
+    k.rot = std::max(k.rot, floor.rot);
+    // Translation and rotation are coupled through the shear springs (a sphere's
+    // tangential contact mode has 1/m_eff = 1/m + r²/I), so the frequencies add:
+    // ω² = k_tran/m + k_rot/I_min. PFC takes min(t_tran, t_rot) instead; that let
+    // beds chatter at the Nyquist frequency (period-2 force flips) under local
+    // damping, so we keep the stricter sum.
+    const double w2_tran = k.tran / bodies.mass[body];
+    const double w2_rot = k.rot / bodies.inertia[body].minCoeff();
+    const double t = 1.0 / std::sqrt(w2_tran + w2_rot);
+    if (t < best.critical) {
+      best.critical = t;
+      best.limiting_body = body;
+      best.limited_by_rotation = w2_rot > w2_tran;
+    }
+  }
+  // A dashpot lowers leapfrog's stability limit from 2/ω to 2/ω·(√(1+β²) − β).
+  if (damping_ratio > 0.0)
+    best.critical *= std::sqrt(1.0 + damping_ratio * damping_ratio) - damping_ratio;
+  return best;
+}
+
+}  // namespace ballast

@@ -1,0 +1,34 @@
+// Critical timestep estimate, after PFC. For each body
+//     dt_body = 1 / sqrt(k_tran/m + k_rot/I_min)
+// with k_tran = Σ (kn + ks) over the body's touching contacts and
+// k_rot = Σ (kn·|r×n|² + ks·|r|²), r the lever arm from the centre of mass to the
+// contact point. A body can always gain a contact within one step, so both sums are
+// floored at one contact with a ball like its own (the ball's kn, ks in series with
+// themselves). dt_critical is the smallest over all bodies, reduced further when
+// contact dashpots are on. Leapfrog on a single spring is stable up to 2·sqrt(m/k),
+// so the estimate keeps a margin for contacts acting together, like PFC's.
+#pragma once
+
+#include <vector>
+
+#include "engine/ball_store.hpp"
+#include "engine/body_store.hpp"
+#include "engine/contact_list.hpp"
+#include "engine/material.hpp"
+#include "engine/walls.hpp"
+
+namespace ballast {
+
+struct TimestepEstimate {
+  double critical = 0.0;  // s
+  Index limiting_body = kNoIndex;
+  bool limited_by_rotation = false;
+};
+
+TimestepEstimate estimate_critical_timestep(const BallStore& balls, const BodyStore& bodies,
+                                            const std::vector<Material>& materials,
+                                            const std::vector<Wall>& walls,
+                                            const ContactList& ball_contacts,
+                                            const ContactList& wall_contacts, double damping_ratio);
+
+}  // namespace ballast

@@ -1,0 +1,85 @@
+#include "engine/walls.hpp"
+
+#include <cmath>
+
+#include "engine/errors.hpp"
+
+namespace ballast {
+
+WallTouch touch_wall(const Wall& w, const Vec3& x, double r) {
+  if (w.shape == WallShape::Plane) {
+    const double s = w.normal.dot(x - w.point);  // signed distance of the centre
+    return {r - s, w.normal, x - s * w.normal};
+  }
+  // Solid box: closest point is the centre clamped into the box.
+  const Vec3 c = x.cwiseMax(w.lo).cwiseMin(w.hi);
+  const Vec3 d = x - c;
+  const double dist2 = d.squaredNorm();
+  if (dist2 > 0.0) {
+    const double dist = std::sqrt(dist2);
+    return {r - dist, d / dist, c};
+  }
+  // Centre inside the box (deep penetration): push out through the nearest face.
+  const Vec3 to_lo = x - w.lo, to_hi = w.hi - x;
+  int axis = 0;
+  double depth = to_lo[0];
+  Vec3 n = -Vec3::UnitX();
+  for (int a = 0; a < 3; ++a) {
+    if (to_lo[a] < depth) depth = to_lo[a], axis = a, n = -Vec3::Unit(a);
+    if (to_hi[a] < depth) depth = to_hi[a], axis = a, n = Vec3::Unit(a);
+  }
+  Vec3 p = x;
+  p[axis] = n[axis] < 0 ? w.lo[axis] : w.hi[axis];
+  return {r + depth, n, p};
+}
+
+void advance_wall(Wall& w, double dt) {
+  const Vec3 step = w.velocity * dt;
+  w.point += step;
+  w.lo += step;
+  w.hi += step;
+  w.displacement += step;
+}
+
+std::vector<Wall> box_container(const Vec3& lo, const Vec3& hi, const Material& sides,
+                                const Material& base, bool open_top) {
+  std::vector<Wall> walls;
+  auto plane = [&](const char* name, const Vec3& p, const Vec3& n, const Material& m) {
+    Wall w;
+    w.name = name;
+    w.shape = WallShape::Plane;
+    w.point = p;
+    w.normal = n;
+    w.material = m;
+    walls.push_back(w);
+  };
+  plane("xmin", lo, Vec3::UnitX(), sides);
+  plane("xmax", hi, -Vec3::UnitX(), sides);
+  plane("ymin", lo, Vec3::UnitY(), sides);
+  plane("ymax", hi, -Vec3::UnitY(), sides);
+  plane("base", lo, Vec3::UnitZ(), base);
+  if (!open_top) plane("lid", hi, -Vec3::UnitZ(), sides);
+  return walls;
+}
+
+void validate_wall(const Wall& w) {
+  const std::string f = "wall '" + w.name + "' ";
+  require_setup(w.material.kn > 0.0 && std::isfinite(w.material.kn), f + "kn", w.material.kn,
+                "> 0 N/m");
+  require_setup(w.material.ks >= 0.0 && std::isfinite(w.material.ks), f + "ks", w.material.ks,
+                ">= 0 N/m");
+  require_setup(w.material.mu >= 0.0 && std::isfinite(w.material.mu), f + "mu", w.material.mu,
+                ">= 0");
+  if (w.shape == WallShape::Plane) {
+    require_setup(std::abs(w.normal.norm() - 1.0) < 1e-9, f + "normal length", w.normal.norm(),
+                  "1 (a unit vector)");
+  } else {
+    require_setup((w.hi - w.lo).minCoeff() > 0.0, f + "box extent (hi - lo, smallest)",
+                  (w.hi - w.lo).minCoeff(), "> 0 m");
+  }
+  if (w.motion == WallMotion::Fixed)
+    require_setup(w.velocity.isZero(0.0), f + "velocity of a fixed wall", w.velocity.norm(),
+                  "0 (use WallMotion::Prescribed to move it)");
+}
+
+}  // namespace ballast

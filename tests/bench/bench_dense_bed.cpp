@@ -1,0 +1,100 @@
+// Dense-bed throughput and the speed/accuracy trade, measured with Google Benchmark.
+//
+//   make bench      (or build/tests/bench/ballast_bench --benchmark_filter=DenseBed)
+//
+// DenseBed: the scene — 1,936 spheres of 36.25 mm settled in the
+// 700 × 300 mm box, kn = ks = 5.08e9 N/m, mu = 0.5, gravity, PFC local damping —
+// stepped on 1 and 2 threads. The counter ball_steps/s is the figure of merit;
+// compare the two thread counts from one run (the machine is shared and noisy).
+//
+// EnergyDrift: what a larger timestep costs in accuracy. 300 undamped frictional
+// spheres fall into the box at 10 g for 0.05 s; drift is |energy balance| over the
+// energy released, for dt = safety × dt_critical.
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <cmath>
+
+#include "cases/sphere_bed.hpp"
+
+using namespace ballast;
+
+namespace {
+
+// Pours and settles the bed once per process; benchmarks step copies of it.
+const Simulation& settled_dense_bed() {
+  static const Simulation bed = [] {
+    SphereBedOptions o;  // 1,936 spheres of 36.25 mm, kn = ks = 5.08e9 N/m
+    o.friction = 0.5;
+    o.rubber_base = false;
+    // Fast pour: 20 g, no local damping (it slows free fall to 0.3 g), inelastic
+    // contacts. Then the benchmark conditions.
+    o.gravity = Vec3(0, 0, -9.81 * 20);
+    o.local_damping = 0.0;
+    o.damping_ratio = 0.5;
+    Simulation sim = make_sphere_bed(o);
+    while (sim.time() < 0.12) sim.step();
+    sim.set_gravity(Vec3(0, 0, -9.81));
+    sim.set_damping_ratio(0.0);
+    sim.set_local_damping(0.7);
+    sim.run(5000);
+    return sim;
+  }();
+  return bed;
+}
+
+void DenseBed(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  omp_set_num_threads(threads);
+  Simulation sim = settled_dense_bed();
+  const long steps_per_iteration = 200;
+  for (auto _ : state) sim.run(steps_per_iteration);
+  const double ball_steps = double(sim.balls().size()) * steps_per_iteration * state.iterations();
+  state.counters["ball_steps/s"] = benchmark::Counter(ball_steps, benchmark::Counter::kIsRate);
+  state.counters["balls"] = sim.balls().size();
+  state.counters["contacts/ball"] =
+      double(sim.contacts().ball_contacts + sim.contacts().wall_contacts) / sim.balls().size();
+  state.counters["dt_us"] = sim.dt() * 1e6;
+  omp_set_num_threads(omp_get_num_procs());
+}
+BENCHMARK(DenseBed)->Arg(1)->Arg(2)->ArgName("threads")->UseRealTime()->MinTime(3.0)->Unit(
+    benchmark::kMillisecond);
+
+void EnergyDrift(benchmark::State& state) {
+  const double safety = state.range(0) / 100.0;
+  double drift = 0.0;
+  long balls = 0, steps = 0;
+  for (auto _ : state) {
+    SphereBedOptions o;
+    o.count = 300;
+    o.friction = 0.5;
+    o.local_damping = 0.0;
+    o.rubber_base = false;
+    o.gravity = Vec3(0, 0, -98.1);
+    o.dt_safety = safety;
+    Simulation sim = make_sphere_bed(o);
+    while (sim.time() < 0.05) sim.step();
+    const EnergyBudget e = sim.energy();
+    drift = std::abs(e.balance()) / e.gravity_work;
+    balls = sim.balls().size();
+    steps = sim.step_count();
+  }
+  state.counters["safety"] = safety;
+  state.counters["drift_%"] = 100.0 * drift;
+  state.counters["steps"] = double(steps);
+  state.counters["ball_steps/s"] =
+      benchmark::Counter(double(balls) * steps * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(EnergyDrift)
+    ->Arg(80)
+    ->Arg(40)
+    ->Arg(20)
+    ->Arg(10)
+    ->ArgName("safety%")
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kSecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

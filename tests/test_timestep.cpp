@@ -1,0 +1,65 @@
+// Critical timestep estimate and its report.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "engine/errors.hpp"
+#include "test_helpers.hpp"
+
+using namespace ballast;
+
+TEST(Timestep, IsolatedSphereUsesOneContactWithItsTwin) {
+  const double r = 0.02, rho = 2600, k = 4e8;
+  SimulationSettings s = scenes::bare_settings();
+  Simulation sim(s);
+  const Index mat = sim.add_material({k, k, 0.5});
+  sim.add_sphere(Vec3::Zero(), r, rho, mat);
+  sim.prepare();
+  const double m = scenes::sphere_mass(r, rho);
+  // Translation: sqrt(m / (k/2 + k/2)); rotation: sqrt(0.4·m·r² / (k/2·r²)), smaller.
+  const double t_rot = std::sqrt(0.4 * m * r * r / (0.5 * k * r * r));
+  EXPECT_NEAR(sim.critical_dt(), t_rot, 1e-12 * t_rot);
+  EXPECT_NEAR(sim.dt(), 0.8 * t_rot, 1e-12 * t_rot);
+}
+
+TEST(Timestep, MoreContactsMeanASmallerCriticalStep) {
+  const double r = 0.02, rho = 2600, k = 4e8;
+  SimulationSettings s = scenes::bare_settings();
+  Simulation sim(s);
+  const Index mat = sim.add_material({k, k, 0.5});
+  const Index centre = sim.add_sphere(Vec3::Zero(), r, rho, mat);
+  for (int a = 0; a < 3; ++a)
+    for (double sgn : {-1.0, 1.0})
+      sim.add_sphere(sgn * (2 * r - 1e-5) * Vec3::Unit(a), r, rho, mat);
+  sim.prepare();
+  const double m = scenes::sphere_mass(r, rho);
+  // The centre ball touches 6 others: k_tran = 6·(k/2 + k/2).
+  const double t_tran = std::sqrt(m / (6 * k));
+  EXPECT_LE(sim.critical_dt(), t_tran * (1 + 1e-12));
+  (void)centre;
+}
+
+TEST(Timestep, StartReportGivesTheRatioAndWarnsWhenTooLarge) {
+  std::ostringstream log;
+  SimulationSettings s = scenes::bare_settings();
+  s.log = &log;
+  s.fixed_dt = 1e-3;  // far above critical for these stiffnesses
+  Simulation sim(s);
+  const Index mat = sim.add_material({1e8, 1e8, 0.0});
+  sim.add_sphere(Vec3::Zero(), 0.02, 2600, mat);
+  sim.prepare();
+  EXPECT_NE(log.str().find("dt/dt_critical"), std::string::npos);
+  EXPECT_NE(log.str().find("warning"), std::string::npos);
+  EXPECT_GT(sim.dt() / sim.critical_dt(), 1.0);
+}
+
+TEST(Timestep, StrictModeRefusesADtAboveCritical) {
+  SimulationSettings s = scenes::bare_settings();
+  s.fixed_dt = 1e-3;
+  s.strict_timestep = true;
+  Simulation sim(s);
+  const Index mat = sim.add_material({1e8, 1e8, 0.0});
+  sim.add_sphere(Vec3::Zero(), 0.02, 2600, mat);
+  EXPECT_THROW(sim.prepare(), SetupError);
+}
