@@ -14,7 +14,9 @@ void ball_contact_loop(const BallStore& balls, const BodyStore& bodies,
                        ContactList& cl) {
   const Index n = cl.size();
   const bool damped = s.damping_ratio > 0.0;
-#pragma omp parallel for schedule(static)
+  // nowait: the wall loop that follows reads only positions and velocities, which
+  // no contact loop writes. The caller puts one barrier after both loops.
+#pragma omp for schedule(static) nowait
   for (Index c = 0; c < n; ++c) {
     const Index i = cl.a[c], j = cl.b[c];
     const Vec3 d = balls.position[i] - balls.position[j];
@@ -71,7 +73,7 @@ void wall_contact_loop(const BallStore& balls, const BodyStore& bodies,
                        const ForceSettings& s, ContactList& cl) {
   const Index n = cl.size();
   const bool damped = s.damping_ratio > 0.0;
-#pragma omp parallel for schedule(static)
+#pragma omp for schedule(static) nowait
   for (Index c = 0; c < n; ++c) {
     const Index i = cl.a[c];
     const Wall& w = walls[cl.b[c]];
@@ -133,42 +135,38 @@ void compute_wall_contacts(const BallStore& balls, const BodyStore& bodies,
     wall_contact_loop<false>(balls, bodies, materials, walls, s, contacts);
 }
 
-void gather_body_forces(const ContactList& bc, const ContactList& wc, const Vec3& gravity,
-                        BallStore& balls, BodyStore& bodies) {
-  const Index nb = bodies.size();
+void gather_body_force(Index body, const ContactList& bc, const ContactList& wc,
+                       const Vec3& gravity, BallStore& balls, BodyStore& bodies) {
   const bool has_walls = wc.size() > 0;
-#pragma omp parallel for schedule(static)
-  for (Index body = 0; body < nb; ++body) {
-    const Vec3 x = bodies.position[body];
-    Vec3 f = bodies.mass[body] * gravity;
-    Vec3 m = Vec3::Zero();
-    const Index first = bodies.first_ball[body], last = first + bodies.ball_count[body];
-    for (Index ball = first; ball < last; ++ball) {
-      for (Index k = bc.ball_offset[ball]; k < bc.ball_offset[ball + 1]; ++k) {
-        const Index e = bc.ball_entry[k];
-        const Index c = e >> 1;
-        if (!bc.active[c]) continue;
-        const Vec3 fc = (e & 1) ? Vec3(-bc.force[c]) : bc.force[c];
-        f += fc;
-        m += (bc.point[c] - x).cross(fc);
-        if (!(e & 1)) {
-          balls.friction_dissipated[ball] += bc.slip_work[c];
-          balls.viscous_dissipated[ball] += bc.viscous_work[c];
-        }
-      }
-      if (!has_walls) continue;
-      for (Index k = wc.ball_offset[ball]; k < wc.ball_offset[ball + 1]; ++k) {
-        const Index c = wc.ball_entry[k] >> 1;
-        if (!wc.active[c]) continue;
-        f += wc.force[c];
-        m += (wc.point[c] - x).cross(wc.force[c]);
-        balls.friction_dissipated[ball] += wc.slip_work[c];
-        balls.viscous_dissipated[ball] += wc.viscous_work[c];
+  const Vec3 x = bodies.position[body];
+  Vec3 f = bodies.mass[body] * gravity;
+  Vec3 m = Vec3::Zero();
+  const Index first = bodies.first_ball[body], last = first + bodies.ball_count[body];
+  for (Index ball = first; ball < last; ++ball) {
+    for (Index k = bc.ball_offset[ball]; k < bc.ball_offset[ball + 1]; ++k) {
+      const Index e = bc.ball_entry[k];
+      const Index c = e >> 1;
+      if (!bc.active[c]) continue;
+      const Vec3 fc = (e & 1) ? Vec3(-bc.force[c]) : bc.force[c];
+      f += fc;
+      m += (bc.point[c] - x).cross(fc);
+      if (!(e & 1)) {
+        balls.friction_dissipated[ball] += bc.slip_work[c];
+        balls.viscous_dissipated[ball] += bc.viscous_work[c];
       }
     }
-    bodies.force[body] = f;
-    bodies.torque[body] = m;
+    if (!has_walls) continue;
+    for (Index k = wc.ball_offset[ball]; k < wc.ball_offset[ball + 1]; ++k) {
+      const Index c = wc.ball_entry[k] >> 1;
+      if (!wc.active[c]) continue;
+      f += wc.force[c];
+      m += (wc.point[c] - x).cross(wc.force[c]);
+      balls.friction_dissipated[ball] += wc.slip_work[c];
+      balls.viscous_dissipated[ball] += wc.viscous_work[c];
+    }
   }
+  bodies.force[body] = f;
+  bodies.torque[body] = m;
 }
 
 }  // namespace ballast

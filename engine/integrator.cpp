@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/forces.hpp"
+
 namespace ballast {
 
 namespace {
@@ -20,16 +22,18 @@ inline Vec3 local_damp(const Vec3& f, const Vec3& v, double alpha) {
 
 }  // namespace
 
-IntegrationReport integrate(const IntegratorSettings& s, const std::vector<Vec3>& reference,
-                            BodyStore& bodies, BallStore& balls) {
+void integrate(const IntegratorSettings& s, const ContactList& ball_contacts,
+               const ContactList& wall_contacts, const std::vector<Vec3>& reference,
+               BodyStore& bodies, BallStore& balls, IntegrationReport& report) {
   const Index n = bodies.size();
   const double dt = s.dt, alpha = s.local_damping;
   const double vmax2 = s.max_speed * s.max_speed;
   Index bad = std::numeric_limits<Index>::max();
   double shift2 = 0.0;
 
-#pragma omp parallel for schedule(static) reduction(min : bad) reduction(max : shift2)
+#pragma omp for schedule(static) nowait
   for (Index b = 0; b < n; ++b) {
+    gather_body_force(b, ball_contacts, wall_contacts, s.gravity, balls, bodies);
     const double m = bodies.mass[b];
     const Vec3 v_old = bodies.velocity[b], w_old = bodies.angular_velocity[b];
     const Vec3 f = alpha > 0.0 ? local_damp(bodies.force[b], v_old, alpha) : bodies.force[b];
@@ -81,14 +85,22 @@ IntegrationReport integrate(const IntegratorSettings& s, const std::vector<Vec3>
       bad = std::min(bad, b);
   }
 
-  IntegrationReport r;
-  r.max_ball_shift2 = shift2;
-  if (bad != std::numeric_limits<Index>::max()) {
-    r.bad_body = bad;
-    r.bad_is_nan = !std::isfinite(bodies.velocity[bad].squaredNorm()) ||
-                   !std::isfinite(bodies.angular_velocity[bad].squaredNorm());
+  // Per-thread results combined with max/min: exact in any order, so the report
+  // does not depend on the thread count.
+#pragma omp critical(ballast_integrate_report)
+  {
+    report.max_ball_shift2 = std::max(report.max_ball_shift2, shift2);
+    if (bad != std::numeric_limits<Index>::max() &&
+        (report.bad_body == kNoIndex || bad < report.bad_body))
+      report.bad_body = bad;
   }
-  return r;
+#pragma omp barrier
+#pragma omp single
+  if (report.bad_body != kNoIndex) {
+    const Index b = report.bad_body;
+    report.bad_is_nan = !std::isfinite(bodies.velocity[b].squaredNorm()) ||
+                        !std::isfinite(bodies.angular_velocity[b].squaredNorm());
+  }
 }
 
 }  // namespace ballast

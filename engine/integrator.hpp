@@ -14,6 +14,7 @@
 
 #include "engine/ball_store.hpp"
 #include "engine/body_store.hpp"
+#include "engine/contact_list.hpp"
 
 namespace ballast {
 
@@ -30,9 +31,14 @@ struct IntegrationReport {
   bool bad_is_nan = false;       // true: non-finite; false: over max_speed
 };
 
-// Advances every body by one step and re-places its balls. `reference` holds ball
-// positions at the last neighbour build, for the skin criterion.
-IntegrationReport integrate(const IntegratorSettings& s, const std::vector<Vec3>& reference,
-                            BodyStore& bodies, BallStore& balls);
+// Gathers each body's contact forces (forces.hpp), advances it by one step and
+// re-places its balls. `reference` holds ball
+// positions at the last neighbour build, for the skin criterion. Written as an
+// orphaned worksharing loop: call it from inside a parallel region (all threads)
+// or outside one (serial). `report` must be shared by the threads and start as
+// IntegrationReport{}; it is complete when the call returns.
+void integrate(const IntegratorSettings& s, const ContactList& ball_contacts,
+               const ContactList& wall_contacts, const std::vector<Vec3>& reference,
+               BodyStore& bodies, BallStore& balls, IntegrationReport& report);
 
 }  // namespace ballast

@@ -296,12 +296,18 @@ void Simulation::step() {
   if (needs_rebuild_) rebuild_neighbours();
   const bool has_walls = !walls_.empty();
   const ForceSettings fs{dt_, settings_.damping_ratio, friction_};
-  compute_ball_contacts(balls_, bodies_, materials_, fs, ball_contacts_);
-  if (has_walls) compute_wall_contacts(balls_, bodies_, materials_, walls_, fs, wall_contacts_);
-  gather_body_forces(ball_contacts_, wall_contacts_, settings_.gravity, balls_, bodies_);
-
-  const IntegratorSettings is{dt_, settings_.local_damping, settings_.gravity, settings_.max_speed};
-  const IntegrationReport r = integrate(is, reference_positions_, bodies_, balls_);
+  const IntegratorSettings is{dt_, settings_.local_damping, settings_.gravity,
+                              settings_.max_speed};
+  IntegrationReport r;
+  // One parallel region per step and two barriers: contact loops (no barrier
+  // between them), then per body gather + integrate (forces.hpp, integrator.hpp).
+#pragma omp parallel
+  {
+    compute_ball_contacts(balls_, bodies_, materials_, fs, ball_contacts_);
+    if (has_walls) compute_wall_contacts(balls_, bodies_, materials_, walls_, fs, wall_contacts_);
+#pragma omp barrier
+    integrate(is, ball_contacts_, wall_contacts_, reference_positions_, bodies_, balls_, r);
+  }
   if (r.bad_body != kNoIndex) {
     std::ostringstream m;
     m << "step " << steps_ << ": body " << r.bad_body;

@@ -7,6 +7,7 @@
 // ~3e5 rad/s). At dt = 0.8·dt_critical this scene drifts by ~10 % of its energy; at
 // 0.15 by ~0.3 % (docs/ACCURACY.md measures the whole curve). The test runs at 0.15.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 
@@ -15,6 +16,7 @@
 using namespace ballast;
 
 TEST(EnergyBudget, ClosesForUndampedFrictionalSettling) {
+  omp_set_num_threads(omp_get_num_procs());  // runs alone (RUN_SERIAL): use every core
   SphereBedOptions o;
   o.count = 1000;
   o.friction = 0.5;

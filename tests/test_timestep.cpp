@@ -17,27 +17,29 @@ TEST(Timestep, IsolatedSphereUsesOneContactWithItsTwin) {
   sim.add_sphere(Vec3::Zero(), r, rho, mat);
   sim.prepare();
   const double m = scenes::sphere_mass(r, rho);
-  // Translation: sqrt(m / (k/2 + k/2)); rotation: sqrt(0.4·m·r² / (k/2·r²)), smaller.
-  const double t_rot = std::sqrt(0.4 * m * r * r / (0.5 * k * r * r));
-  EXPECT_NEAR(sim.critical_dt(), t_rot, 1e-12 * t_rot);
-  EXPECT_NEAR(sim.dt(), 0.8 * t_rot, 1e-12 * t_rot);
+  // Translation: k_tran = k/2 + k/2 = k; rotation: k_rot = (k/2)·r² with I = 0.4·m·r².
+  // ω² = k/m + (k/2)/(0.4·m) = 2.25·k/m.
+  const double expected = 1.0 / std::sqrt(2.25 * k / m);
+  EXPECT_NEAR(sim.critical_dt(), expected, 1e-12 * expected);
+  EXPECT_NEAR(sim.dt(), 0.8 * expected, 1e-12 * expected);
 }
 
-TEST(Timestep, MoreContactsMeanASmallerCriticalStep) {
+TEST(Timestep, SixContactsGiveTheSummedStiffness) {
   const double r = 0.02, rho = 2600, k = 4e8;
   SimulationSettings s = scenes::bare_settings();
   Simulation sim(s);
   const Index mat = sim.add_material({k, k, 0.5});
-  const Index centre = sim.add_sphere(Vec3::Zero(), r, rho, mat);
+  sim.add_sphere(Vec3::Zero(), r, rho, mat);  // the centre ball, body 0
   for (int a = 0; a < 3; ++a)
     for (double sgn : {-1.0, 1.0})
       sim.add_sphere(sgn * (2 * r - 1e-5) * Vec3::Unit(a), r, rho, mat);
   sim.prepare();
   const double m = scenes::sphere_mass(r, rho);
-  // The centre ball touches 6 others: k_tran = 6·(k/2 + k/2).
-  const double t_tran = std::sqrt(m / (6 * k));
-  EXPECT_LE(sim.critical_dt(), t_tran * (1 + 1e-12));
-  (void)centre;
+  // The centre ball touches 6 others: k_tran = 6·(k/2 + k/2) = 6k and
+  // k_rot = 6·(k/2)·r² (each contact's shear spring; a normal force has no lever
+  // arm on a sphere), so ω² = 6k/m + 3k/(0.4·m) = 13.5·k/m.
+  const double expected = 1.0 / std::sqrt(13.5 * k / m);
+  EXPECT_NEAR(sim.critical_dt(), expected, 1e-9 * expected);
 }
 
 TEST(Timestep, StartReportGivesTheRatioAndWarnsWhenTooLarge) {
