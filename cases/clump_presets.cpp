@@ -1,0 +1,176 @@
+#include "cases/clump_presets.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "engine/clump_mass.hpp"
+#include "engine/errors.hpp"
+
+namespace ballast {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+[[noreturn]] void fail(const std::string& origin, const std::string& what) {
+  throw SetupError(origin + ": " + what);
+}
+
+bool is_documentation(const std::string& key) {
+  auto ends_with = [&key](std::string_view tail) {
+    return key.size() >= tail.size() &&
+           key.compare(key.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  return key == "source" || key == "description" || key == "notes" || ends_with("_source") ||
+         ends_with("_note");
+}
+
+double number(const json& j, const char* key, const std::string& origin) {
+  const json& v = j.at(key);
+  if (!v.is_number()) {
+    fail(origin, std::string("field '") + key + "' = " + v.dump() + " is not a number");
+  }
+  return v.get<double>();
+}
+
+int integer(const json& j, const char* key, const std::string& origin) {
+  const json& v = j.at(key);
+  if (!v.is_number_integer()) {
+    fail(origin, std::string("field '") + key + "' = " + v.dump() + " is not an integer");
+  }
+  return v.get<int>();
+}
+
+std::string text(const json& j, const char* key, const std::string& origin) {
+  const json& v = j.at(key);
+  if (!v.is_string()) {
+    fail(origin, std::string("field '") + key + "' = " + v.dump() + " is not a string");
+  }
+  return v.get<std::string>();
+}
+
+std::string read_file(const std::string& path, const std::string& what) {
+  std::ifstream in(path);
+  if (!in) throw SetupError("cannot read " + what + " '" + path + "'");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+std::string clump_preset_dir() {
+  return std::string(BALLAST_CASES_DIR) + "/presets";
+}
+
+std::vector<std::string> available_clump_presets() {
+  std::vector<std::string> names;
+  const fs::path root = clump_preset_dir();
+  if (!fs::is_directory(root)) return names;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    if (!entry.is_regular_file() || entry.path().extension() != ".json") continue;
+    fs::path rel = fs::relative(entry.path(), root);
+    rel.replace_extension();
+    names.push_back(rel.generic_string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+ClumpPreset load_clump_preset(const std::string& name) {
+  const std::vector<std::string> names = available_clump_presets();
+  if (std::find(names.begin(), names.end(), name) == names.end()) {
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw SetupError("unknown clump preset '" + name + "'; available: " +
+                     (list.empty() ? "(none found in " + clump_preset_dir() + ")" : list));
+  }
+  const std::string path = clump_preset_dir() + "/" + name + ".json";
+  ClumpPreset p =
+      parse_clump_preset(read_file(path, "clump preset"), "clump preset '" + name + "'");
+  p.name = name;
+  return p;
+}
+
+ClumpPreset load_clump_params_file(const std::string& path) {
+  ClumpPreset p = parse_clump_preset(read_file(path, "clump parameter file"), path);
+  p.name = path;
+  return p;
+}
+
+ClumpPreset parse_clump_preset(std::string_view json_text, const std::string& origin) {
+  json j;
+  try {
+    j = json::parse(json_text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& e) {
+    fail(origin, std::string("not valid JSON: ") + e.what());
+  }
+  if (!j.is_object()) fail(origin, "expected a JSON object of clump parameters");
+
+  static const char* const kRequired[] = {
+      "directions", "c", "d3", "p", "edge_balls", "balls_per_direction", "virtual_sphere_factor"};
+  static const char* const kOptional[] = {"adjacency", "nominal_diameter", "min_radius_fraction",
+                                          "density", "paper"};
+  for (const char* key : kRequired) {
+    if (!j.contains(key)) fail(origin, std::string("missing field '") + key + "'");
+  }
+  for (const auto& [key, value] : j.items()) {
+    const bool known = is_documentation(key) ||
+                       std::any_of(std::begin(kRequired), std::end(kRequired),
+                                   [&](const char* k) { return key == k; }) ||
+                       std::any_of(std::begin(kOptional), std::end(kOptional),
+                                   [&](const char* k) { return key == k; });
+    if (!known) {
+      fail(origin, "unknown field '" + key +
+                       "' (known: directions, p, balls_per_direction, c, d3, edge_balls, "
+                       "virtual_sphere_factor, adjacency, nominal_diameter, "
+                       "min_radius_fraction, density, paper, and documentation fields "
+                       "source, description, notes, *_source, *_note)");
+    }
+  }
+
+  ClumpPreset p;
+  ClumpParams& q = p.params;
+  if (j.contains("source")) p.source = text(j, "source", origin);
+  if (j.contains("description")) p.description = text(j, "description", origin);
+  q.directions = integer(j, "directions", origin);
+  q.p = number(j, "p", origin);
+  q.balls_per_direction = integer(j, "balls_per_direction", origin);
+  q.c = number(j, "c", origin);
+  q.d3 = number(j, "d3", origin);
+  q.edge_balls = integer(j, "edge_balls", origin);
+  q.virtual_sphere_factor = number(j, "virtual_sphere_factor", origin);
+  try {
+    if (j.contains("adjacency")) q.adjacency = parse_adjacency(text(j, "adjacency", origin));
+    if (j.contains("nominal_diameter")) q.nominal_diameter = number(j, "nominal_diameter", origin);
+    if (j.contains("min_radius_fraction")) {
+      q.min_radius_fraction = number(j, "min_radius_fraction", origin);
+    }
+    if (j.contains("density")) p.density = number(j, "density", origin);
+    validate_clump_params(q);
+    ClumpMassOptions mass;
+    mass.density = p.density;
+    validate_mass_options(mass);
+  } catch (const SetupError& e) {
+    if (std::string(e.what()).rfind(origin, 0) == 0) throw;
+    fail(origin, e.what());
+  }
+  if (j.contains("paper")) {
+    const json& paper = j.at("paper");
+    if (!paper.is_object() || !paper.contains("clumps") || !paper.contains("balls")) {
+      fail(origin, "field 'paper' = " + paper.dump() +
+                       " is not an object {\"clumps\": int, \"balls\": int}");
+    }
+    p.paper_clumps = integer(paper, "clumps", origin);
+    p.paper_balls = integer(paper, "balls", origin);
+    if (*p.paper_clumps <= 0 || *p.paper_balls < *p.paper_clumps) {
+      fail(origin, "field 'paper' = " + paper.dump() + " needs clumps > 0 and balls >= clumps");
+    }
+  }
+  return p;
+}
+
+}  // namespace ballast

@@ -1,0 +1,173 @@
+#include "study/clump_archive.hpp"
+
+#include <hdf5.h>
+
+#include <stdexcept>
+
+namespace ballast {
+namespace {
+
+// Owns one HDF5 identifier and closes it with the matching function.
+class Handle {
+ public:
+  Handle(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
+    if (id_ < 0) throw std::runtime_error("HDF5: cannot " + what);
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() { close_(id_); }
+  operator hid_t() const { return id_; }
+
+ private:
+  hid_t id_;
+  herr_t (*close_)(hid_t);
+};
+
+void check(herr_t status, const std::string& what) {
+  if (status < 0) throw std::runtime_error("HDF5: cannot " + what);
+}
+
+void string_attribute(hid_t target, const char* name, const std::string& value) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "copy string type");
+  check(H5Tset_size(type, value.empty() ? 1 : value.size()), "size string type");
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create scalar space");
+  Handle attr(H5Acreate2(target, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+              std::string("create attribute ") + name);
+  const char* data = value.empty() ? "" : value.c_str();
+  check(H5Awrite(attr, type, data), std::string("write attribute ") + name);
+}
+
+template <class T>
+void number_attribute(hid_t target, const char* name, T value) {
+  const hid_t type = std::is_floating_point_v<T> ? H5T_NATIVE_DOUBLE : H5T_NATIVE_LLONG;
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create scalar space");
+  Handle attr(H5Acreate2(target, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+              std::string("create attribute ") + name);
+  if constexpr (std::is_floating_point_v<T>) {
+    const double v = value;
+    check(H5Awrite(attr, type, &v), std::string("write attribute ") + name);
+  } else {
+    const long long v = static_cast<long long>(value);
+    check(H5Awrite(attr, type, &v), std::string("write attribute ") + name);
+  }
+}
+
+// A dataset of doubles (or ints) with shape `dims`, row-major data, and its units.
+template <class T>
+void dataset(hid_t group, const char* name, const std::vector<hsize_t>& dims,
+             const std::vector<T>& data, const std::string& units) {
+  const hid_t type = std::is_floating_point_v<T> ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT;
+  Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose,
+               std::string("create space for ") + name);
+  Handle set(H5Dcreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+             std::string("create dataset ") + name);
+  if (!data.empty()) {
+    check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
+          std::string("write dataset ") + name);
+  }
+  string_attribute(set, "units", units);
+}
+
+}  // namespace
+
+void write_clump_archive(const std::string& path, const ClumpArchiveHeader& h,
+                         const std::vector<ClumpTemplate>& clumps,
+                         const std::vector<ClumpShape>& shapes) {
+  if (shapes.size() != clumps.size()) {
+    throw std::invalid_argument("clump archive: " + std::to_string(shapes.size()) + " shapes for " +
+                                std::to_string(clumps.size()) + " clumps");
+  }
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become exceptions, not stderr noise
+  Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+              "create '" + path + "'");
+
+  const ClumpParams& q = h.params;
+  string_attribute(file, "format", "ballast-clumps");
+  number_attribute(file, "version", 1);
+  string_attribute(file, "preset", h.preset);
+  string_attribute(file, "source", h.source);
+  number_attribute(file, "seed", static_cast<long long>(h.seed));
+  number_attribute(file, "count", static_cast<long long>(clumps.size()));
+  string_attribute(file, "mass_mode", mass_mode_name(h.mass.mode));
+  number_attribute(file, "density", h.mass.density);
+  number_attribute(file, "accuracy", h.mass.accuracy);
+  number_attribute(file, "directions", q.directions);
+  number_attribute(file, "p", q.p);
+  number_attribute(file, "balls_per_direction", q.balls_per_direction);
+  number_attribute(file, "c", q.c);
+  number_attribute(file, "d3", q.d3);
+  number_attribute(file, "edge_balls", q.edge_balls);
+  string_attribute(file, "adjacency", adjacency_name(q.adjacency));
+  number_attribute(file, "nominal_diameter", q.nominal_diameter);
+  number_attribute(file, "virtual_sphere_factor", q.virtual_sphere_factor);
+  number_attribute(file, "min_radius_fraction", q.min_radius_fraction);
+  number_attribute(file, "central_radius", central_ball_radius(q));
+  number_attribute(file, "virtual_radius", virtual_sphere_radius(q));
+  number_attribute(file, "expected_balls_per_clump", expected_ball_count(q));
+
+  const hsize_t m = clumps.size();
+  std::vector<double> radius, offset, mass, inertia, volume, error, centre, rotation;
+  std::vector<int> owner, first, count;
+  for (std::size_t i = 0; i < clumps.size(); ++i) {
+    const ClumpTemplate& t = clumps[i];
+    first.push_back(static_cast<int>(radius.size()));
+    count.push_back(t.ball_count());
+    for (int b = 0; b < t.ball_count(); ++b) {
+      radius.push_back(t.radii[b]);
+      for (int k = 0; k < 3; ++k) offset.push_back(t.offsets[b][k]);
+      owner.push_back(static_cast<int>(i));
+    }
+    mass.push_back(t.mass);
+    volume.push_back(t.volume);
+    error.push_back(t.integration_error);
+    for (int k = 0; k < 3; ++k) inertia.push_back(t.principal_inertia[k]);
+    for (int k = 0; k < 3; ++k) centre.push_back(t.generation_centre[k]);
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) rotation.push_back(t.generation_rotation(r, c));
+    }
+  }
+  const hsize_t n = radius.size();
+  {
+    Handle g(H5Gcreate2(file, "balls", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+             "create group balls");
+    dataset(g, "radius", {n}, radius, "m");
+    dataset(g, "offset", {n, 3}, offset, "m");
+    dataset(g, "clump", {n}, owner, "1");
+  }
+  {
+    Handle g(H5Gcreate2(file, "clumps", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+             "create group clumps");
+    dataset(g, "first_ball", {m}, first, "1");
+    dataset(g, "ball_count", {m}, count, "1");
+    dataset(g, "mass", {m}, mass, "kg");
+    dataset(g, "principal_inertia", {m, 3}, inertia, "kg m^2");
+    dataset(g, "volume", {m}, volume, "m^3");
+    dataset(g, "integration_error", {m}, error, "1");
+    dataset(g, "generation_centre", {m, 3}, centre, "m");
+    dataset(g, "generation_rotation", {m, 3, 3}, rotation, "1");
+  }
+  {
+    std::vector<double> uv, area, sph, elong, flat, ratio, dims;
+    for (const ClumpShape& s : shapes) {
+      uv.push_back(s.union_volume);
+      area.push_back(s.surface_area);
+      sph.push_back(s.sphericity);
+      elong.push_back(s.elongation);
+      flat.push_back(s.flatness);
+      ratio.push_back(s.volume_ratio);
+      dims.insert(dims.end(), {s.a, s.b, s.c});
+    }
+    Handle g(H5Gcreate2(file, "shape", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+             "create group shape");
+    dataset(g, "union_volume", {m}, uv, "m^3");
+    dataset(g, "surface_area", {m}, area, "m^2");
+    dataset(g, "sphericity", {m}, sph, "1");
+    dataset(g, "elongation", {m}, elong, "1");
+    dataset(g, "flatness", {m}, flat, "1");
+    dataset(g, "volume_ratio", {m}, ratio, "1");
+    dataset(g, "dimensions", {m, 3}, dims, "m");
+  }
+  check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush '" + path + "'");
+}
+
+}  // namespace ballast
