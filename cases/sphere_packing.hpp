@@ -12,7 +12,8 @@ namespace ballast {
 // (random sequential addition) in the box [lo.x, hi.x] × [lo.y, hi.y] × [lo.z, top],
 // where `top` is chosen so the spheres fill `volume_fraction` of that box. A loose
 // random cloud (fraction ~0.3) falls into a random packing; a lattice would stack
-// into columns. Deterministic for a given seed. Throws std::invalid_argument naming
+// into columns. Centres come back in spatial order (grid cells, z slowest) for
+// memory locality. Deterministic for a given seed. Throws std::invalid_argument naming
 // the count if the spheres cannot be placed below hi.z.
 std::vector<Vec3> random_loose_packing(int count, double radius, const Vec3& lo, const Vec3& hi,
                                        double volume_fraction, std::uint64_t seed);
