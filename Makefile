@@ -2,6 +2,7 @@
 # Both install missing Debian packages first (scripts/install-deps.sh), then build.
 BUILD  ?= build
 JOBS   ?= $(shell nproc)
+MAKEFLAGS += --no-print-directory
 CMAKE_FLAGS ?=
 
 .PHONY: all deps configure build run test test-fast test-slow bench format clean

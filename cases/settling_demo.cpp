@@ -36,12 +36,13 @@ template <class Done>
 void run_phase(Simulation& sim, const char* name, const SettlingDemoOptions& o, std::ostream& out,
                Done&& done) {
   const double t0 = sim.time();
-  for (long k = 1; k <= o.max_steps_per_phase; ++k) {
+  long k = 1;
+  for (; k <= o.max_steps_per_phase; ++k) {
     sim.step();
-    if (k % o.report_every == 0) print_row(out, name, sim);
     if (sim.time() - t0 >= o.min_phase_time && k % 500 == 0 && done()) break;
+    if (k % o.report_every == 0) print_row(out, name, sim);
   }
-  print_row(out, name, sim);
+  print_row(out, name, sim);  // the phase's last state, once
 }
 
 }  // namespace

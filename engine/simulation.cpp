@@ -296,8 +296,7 @@ void Simulation::step() {
   if (needs_rebuild_) rebuild_neighbours();
   const bool has_walls = !walls_.empty();
   const ForceSettings fs{dt_, settings_.damping_ratio, friction_};
-  const IntegratorSettings is{dt_, settings_.local_damping, settings_.gravity,
-                              settings_.max_speed};
+  const IntegratorSettings is{dt_, settings_.local_damping, settings_.gravity, settings_.max_speed};
   IntegrationReport r;
   // One parallel region per step and two barriers: contact loops (no barrier
   // between them), then per body gather + integrate (forces.hpp, integrator.hpp).

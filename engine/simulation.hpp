@@ -16,6 +16,7 @@
 #include "engine/ball_store.hpp"
 #include "engine/body_store.hpp"
 #include "engine/cell_list.hpp"
+#include "engine/clump_template.hpp"
 #include "engine/contact_list.hpp"
 #include "engine/diagnostics.hpp"
 #include "engine/material.hpp"
@@ -50,6 +51,10 @@ class Simulation {
   Index add_clump(const Vec3& x, const Quat& orientation, std::span<const Vec3> offsets,
                   std::span<const double> radii, double mass, const Vec3& principal_inertia,
                   Index material);
+  // A clump from the generator (engine/clump_generator.hpp, clump_mass.hpp).
+  Index add_clump(const Vec3& x, const Quat& orientation, const ClumpTemplate& t, Index material) {
+    return add_clump(x, orientation, t.offsets, t.radii, t.mass, t.principal_inertia, material);
+  }
   Index add_wall(const Wall& w);
   Index add_servo(const Servo& s);
 

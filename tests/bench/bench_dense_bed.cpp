@@ -50,9 +50,8 @@ void DenseBed(benchmark::State& state) {
   const long steps_per_iteration = 200;
   const long builds0 = sim.neighbour_builds();
   for (auto _ : state) sim.run(steps_per_iteration);
-  state.counters["steps/build"] =
-      double(steps_per_iteration) * state.iterations() /
-      std::max(1L, sim.neighbour_builds() - builds0);
+  state.counters["steps/build"] = double(steps_per_iteration) * state.iterations() /
+                                  std::max(1L, sim.neighbour_builds() - builds0);
   const double ball_steps = double(sim.balls().size()) * steps_per_iteration * state.iterations();
   state.counters["ball_steps/s"] = benchmark::Counter(ball_steps, benchmark::Counter::kIsRate);
   state.counters["balls"] = sim.balls().size();
