@@ -8,6 +8,26 @@ namespace ballast {
 
 namespace {
 
+// A contact whose entities no longer overlap: PFC drops its shear force.
+template <bool kFriction>
+inline void open_contact(ContactList& cl, Index c) {
+  if (!cl.active[c]) return;
+  cl.active[c] = 0;
+  cl.force[c].setZero();
+  cl.normal_force[c] = 0.0;
+  cl.slip_work[c] = cl.viscous_work[c] = 0.0;
+  if constexpr (kFriction) cl.shear_force[c].setZero();
+}
+
+inline void store_contact(ContactList& cl, Index c, const ContactResult& r, const Vec3& point) {
+  cl.active[c] = 1;
+  cl.force[c] = r.force;
+  cl.point[c] = point;
+  cl.normal_force[c] = r.normal_force;
+  cl.slip_work[c] = r.slip_work;
+  cl.viscous_work[c] = r.viscous_work;
+}
+
 template <bool kFriction>
 void ball_contact_loop(const BallStore& balls, const BodyStore& bodies,
                        const std::vector<Material>& materials, const ForceSettings& s,
@@ -24,14 +44,7 @@ void ball_contact_loop(const BallStore& balls, const BodyStore& bodies,
     const double dist2 = d.squaredNorm();
     const double reach = ri + rj;
     if (dist2 >= reach * reach) {
-      // Open contact: PFC drops the shear force when the balls separate.
-      if (cl.active[c]) {
-        cl.active[c] = 0;
-        cl.force[c].setZero();
-        cl.normal_force[c] = 0.0;
-        cl.slip_work[c] = cl.viscous_work[c] = 0.0;
-        if constexpr (kFriction) cl.shear_force[c].setZero();
-      }
+      open_contact<kFriction>(cl, c);
       continue;
     }
     const double dist = std::sqrt(dist2);
@@ -57,13 +70,7 @@ void ball_contact_loop(const BallStore& balls, const BodyStore& bodies,
     st.dt = s.dt;
     Vec3 unused = Vec3::Zero();
     Vec3& hist = kFriction ? cl.shear_force[c] : unused;
-    const ContactResult r = linear_contact<kFriction>(st, hist);
-    cl.active[c] = 1;
-    cl.force[c] = r.force;
-    cl.point[c] = p;
-    cl.normal_force[c] = r.normal_force;
-    cl.slip_work[c] = r.slip_work;
-    cl.viscous_work[c] = r.viscous_work;
+    store_contact(cl, c, linear_contact<kFriction>(st, hist), p);
   }
 }
 
@@ -79,13 +86,7 @@ void wall_contact_loop(const BallStore& balls, const BodyStore& bodies,
     const Wall& w = walls[cl.b[c]];
     const WallTouch t = touch_wall(w, balls.position[i], balls.radius[i]);
     if (t.overlap <= 0.0) {
-      if (cl.active[c]) {
-        cl.active[c] = 0;
-        cl.force[c].setZero();
-        cl.normal_force[c] = 0.0;
-        cl.slip_work[c] = cl.viscous_work[c] = 0.0;
-        if constexpr (kFriction) cl.shear_force[c].setZero();
-      }
+      open_contact<kFriction>(cl, c);
       continue;
     }
     const Index bi = balls.body[i];
@@ -105,13 +106,7 @@ void wall_contact_loop(const BallStore& balls, const BodyStore& bodies,
     st.dt = s.dt;
     Vec3 unused = Vec3::Zero();
     Vec3& hist = kFriction ? cl.shear_force[c] : unused;
-    const ContactResult r = linear_contact<kFriction>(st, hist);
-    cl.active[c] = 1;
-    cl.force[c] = r.force;
-    cl.point[c] = t.point;
-    cl.normal_force[c] = r.normal_force;
-    cl.slip_work[c] = r.slip_work;
-    cl.viscous_work[c] = r.viscous_work;
+    store_contact(cl, c, linear_contact<kFriction>(st, hist), t.point);
   }
 }
 
