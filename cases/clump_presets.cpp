@@ -117,7 +117,8 @@ ClumpPreset parse_clump_preset(std::string_view json_text, const std::string& or
   for (const char* key : kRequired) {
     if (!j.contains(key)) fail(origin, std::string("missing field '") + key + "'");
   }
-  for (const auto& [key, value] : j.items()) {
+  for (const auto& item : j.items()) {
+    const std::string& key = item.key();  // a plain reference: lambdas may capture it
     const bool known = is_documentation(key) ||
                        std::any_of(std::begin(kRequired), std::end(kRequired),
                                    [&](const char* k) { return key == k; }) ||
