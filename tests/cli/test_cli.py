@@ -1,0 +1,96 @@
+#!/usr/bin/python3
+"""End-to-end checks of the `ballast` command line, as a user or a script meets it.
+
+Run by ctest with the path of the ballast binary as the only argument:
+    /usr/bin/python3 tests/cli/test_cli.py build/study/ballast
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import h5py
+import numpy as np
+
+BALLAST = None
+CASES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "cases")
+
+
+def ballast(*args):
+    return subprocess.run([BALLAST, *args], capture_output=True, text=True, timeout=300)
+
+
+class ClumpCommand(unittest.TestCase):
+    def test_json_summary_matches_the_expected_ball_count(self):
+        r = ballast("clump", "--preset", "table2/sample1", "--count", "400", "--seed", "1",
+                    "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s = json.loads(r.stdout)
+        self.assertEqual(s["count"], 400)
+        balls = s["statistics"]["balls"]
+        # The sample mean must sit within 4 standard errors of 1 + pNn + p²Em = 10.
+        self.assertLess(abs(balls["mean"] - s["expected_balls_per_clump"]),
+                        4 * s["balls_per_clump_standard_error"])
+        self.assertLessEqual(balls["min"], balls["mean"])
+        self.assertLessEqual(balls["mean"], balls["max"])
+        sph = s["statistics"]["sphericity"]
+        self.assertGreater(sph["min"], 0.5)
+        self.assertLessEqual(sph["max"], 1.0 + 1e-9)
+
+    def test_archive_holds_every_clump_with_uniform_density(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "clumps.h5")
+            r = ballast("clump", "--preset", "table1/sample3", "--count", "200", "--seed", "5",
+                        "-o", path)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with h5py.File(path, "r") as f:
+                counts = f["clumps/ball_count"][:]
+                self.assertEqual(len(counts), 200)
+                self.assertEqual(int(counts.sum()), len(f["balls/radius"]))
+                # Uniform mode: mass = density × union volume, clump by clump.
+                density = float(f.attrs["density"])
+                np.testing.assert_allclose(f["clumps/mass"][:], density * f["clumps/volume"][:],
+                                           rtol=1e-12)
+                # Principal moments are stored ascending and obey the triangle inequality.
+                inertia = f["clumps/principal_inertia"][:]
+                self.assertTrue(np.all(np.diff(inertia, axis=1) >= 0))
+                self.assertTrue(np.all(inertia[:, 0] + inertia[:, 1] >= inertia[:, 2] * (1 - 1e-9)))
+
+    def test_unknown_preset_is_named_with_the_available_ones(self):
+        r = ballast("clump", "--preset", "nope", "--count", "1")
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("unknown clump preset 'nope'", r.stderr)
+        self.assertIn("table2/sample1", r.stderr)
+
+    def test_bad_parameter_file_names_the_field_and_value(self):
+        with open(os.path.join(CASES, "presets", "table2", "sample1.json")) as f:
+            params = json.load(f)
+        params["p"] = 1.5
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "bad.json")
+            with open(path, "w") as f:
+                json.dump(params, f)
+            r = ballast("clump", "--params", path, "--count", "1")
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("'p'", r.stderr)
+        self.assertIn("1.5", r.stderr)
+
+
+class DemoCommand(unittest.TestCase):
+    def test_demo_reports_timestep_and_closes_its_energy_budget(self):
+        r = ballast("demo", "--spheres", "60", "--max-steps", "4000", "--report-every", "2000")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("dt/dt_critical = 0.8 (automatic)", r.stdout)
+        self.assertIn("settled:", r.stdout)
+        line = [l for l in r.stdout.splitlines() if l.startswith("energy:")][0]
+        error_percent = float(line.split("balance error ")[1].split(" %")[0])
+        self.assertTrue(math.isfinite(error_percent))
+        self.assertLess(error_percent, 10.0)
+
+
+if __name__ == "__main__":
+    BALLAST = os.path.abspath(sys.argv.pop(1))
+    unittest.main(verbosity=2)
