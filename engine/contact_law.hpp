@@ -88,8 +88,10 @@ inline double dashpot_coefficient(double ratio, double m_eff, double k) {
   return ratio > 0.0 ? 2.0 * ratio * std::sqrt(m_eff * k) : 0.0;
 }
 
-// The registry of contact models. Adding one means writing its function above and a
-// row here; scenes name models by `name`.
+// The registry of contact models. Adding one means writing its function above, a
+// row here and its branch in forces.cpp; scenes name models by `name`
+// (SimulationSettings::contact_model), and an unknown name is refused at set-up
+// with this table's names.
 struct ContactModelInfo {
   std::string_view name;
   std::string_view description;

@@ -4,6 +4,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "engine/contact_law.hpp"
 #include "engine/errors.hpp"
 #include "engine/forces.hpp"
 #include "engine/integrator.hpp"
@@ -186,6 +187,13 @@ void Simulation::validate() const {
   if (s.skin) require_setup(*s.skin > 0.0, "skin", *s.skin, "> 0 m");
   require_setup(s.max_speed > 0.0, "max_speed", s.max_speed, "> 0 m/s");
   require_setup(s.gravity.allFinite(), "gravity", vec_str(s.gravity), "finite");
+  std::string models;
+  bool known = false;
+  for (const ContactModelInfo& m : kContactModels) {
+    models += (models.empty() ? "" : ", ") + std::string(m.name);
+    known = known || m.name == s.contact_model;
+  }
+  require_setup(known, "contact_model", "'" + s.contact_model + "'", models);
 }
 
 void Simulation::prepare() {

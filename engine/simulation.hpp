@@ -11,6 +11,7 @@
 #include <iosfwd>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "engine/ball_store.hpp"
@@ -33,10 +34,11 @@ struct SimulationSettings {
   double damping_ratio = 0.0;            // viscous contact damping ratio β; 0: none
   std::optional<double> fixed_dt;        // s; unset: automatic = dt_safety × critical
   double dt_safety = 0.8;
-  bool strict_timestep = false;  // a fixed dt above critical is an error, not a warning
-  std::optional<double> skin;    // m; unset: 0.2 × mean ball radius
-  double max_speed = 100.0;      // m/s; a body faster than this means blow-up
-  std::ostream* log = nullptr;   // where the start-up report goes (nullptr: silent)
+  bool strict_timestep = false;          // a fixed dt above critical is an error, not a warning
+  std::optional<double> skin;            // m; unset: 0.2 × mean ball radius
+  double max_speed = 100.0;              // m/s; a body faster than this means blow-up
+  std::string contact_model = "linear";  // a name from kContactModels (contact_law.hpp)
+  std::ostream* log = nullptr;           // where the start-up report goes (nullptr: silent)
 };
 
 class Simulation {

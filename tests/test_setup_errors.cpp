@@ -60,6 +60,15 @@ TEST(SetupErrors, RadiusDensityMaterialAndWalls) {
   expect_setup_error([] { Simulation bad(scenes::bare_settings(-1.0)); }, {"domain"});
 }
 
+TEST(SetupErrors, UnknownContactModelListsTheRegisteredOnes) {
+  SimulationSettings s = scenes::bare_settings();
+  s.contact_model = "hertz";
+  Simulation sim(s);
+  const Index mat = sim.add_material({1e6, 1e6, 0.3});
+  sim.add_sphere(Vec3::Zero(), 0.01, 2600, mat);
+  expect_setup_error([&] { sim.prepare(); }, {"contact_model", "'hertz'", "linear"});
+}
+
 TEST(SetupErrors, BlowUpNamesStepBodyAndQuantityAndKeepsTheState) {
   SimulationSettings s = scenes::bare_settings();
   s.fixed_dt = 1e-2;  // hundreds of times the critical step
