@@ -2,6 +2,9 @@
 
 #include "cases/sphere_packing.hpp"
 
+#include <random>
+#include <utility>
+
 namespace ballast {
 
 Simulation make_sphere_bed(const SphereBedOptions& o) {
@@ -24,8 +27,14 @@ Simulation make_sphere_bed(const SphereBedOptions& o) {
   const Material base = o.rubber_base ? box_test::rubber_base(o.friction)
                                       : Material{o.stiffness, o.stiffness, o.friction};
   for (const Wall& w : box_container(lo, hi, side, base, /*open_top=*/true)) sim.add_wall(w);
-  for (const Vec3& p : random_loose_packing(o.count, r, lo, hi, o.volume_fraction, o.seed))
-    sim.add_sphere(p, r, box_test::kDensity, mat);
+  std::vector<Vec3> centres = random_loose_packing(o.count, r, lo, hi, o.volume_fraction, o.seed);
+  if (!o.spatial_order) {
+    // Fisher–Yates with the bed's own seed: the same bed, bodies numbered at random.
+    std::mt19937_64 rng(o.seed ^ 0x9e3779b97f4a7c15ull);
+    for (std::size_t k = centres.size(); k > 1; --k)
+      std::swap(centres[k - 1], centres[static_cast<std::size_t>(unit_uniform(rng()) * k)]);
+  }
+  for (const Vec3& p : centres) sim.add_sphere(p, r, box_test::kDensity, mat);
   return sim;
 }
 

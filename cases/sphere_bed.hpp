@@ -18,6 +18,7 @@ struct SphereBedOptions {
   double width = box_test::kWidth;              // m, box y extent
   std::uint64_t seed = 1;
   double volume_fraction = 0.3;  // of the loose random cloud the spheres start as
+  bool spatial_order = true;     // false: bodies numbered at random (to measure locality)
   double friction = box_test::kFrictionCompaction;
   double stiffness = box_test::kBallStiffness;  // N/m, balls and side walls
   bool rubber_base = true;                      // false: the base is as stiff as the sides

@@ -6,6 +6,7 @@
 // 700 × 300 mm box, kn = ks = 5.08e9 N/m, mu = 0.5, gravity, PFC local damping —
 // stepped on 1 and 2 threads. The counter ball_steps/s is the figure of merit;
 // compare the two thread counts from one run (the machine is shared and noisy).
+// The random_order:1 variants number the same bed's bodies at random.
 //
 // EnergyDrift: what a larger timestep costs in accuracy. 300 undamped frictional
 // spheres fall into the box at 10 g for 0.05 s; drift is |energy balance| over the
@@ -21,32 +22,38 @@ using namespace ballast;
 
 namespace {
 
-// Pours and settles the bed once per process; benchmarks step copies of it.
-const Simulation& settled_dense_bed() {
-  static const Simulation bed = [] {
-    SphereBedOptions o;  // 1,936 spheres of 36.25 mm, kn = ks = 5.08e9 N/m
-    o.friction = 0.5;
-    o.rubber_base = false;
-    // Fast pour: 20 g, no local damping (it slows free fall to 0.3 g), inelastic
-    // contacts. Then the benchmark conditions.
-    o.gravity = Vec3(0, 0, -9.81 * 20);
-    o.local_damping = 0.0;
-    o.damping_ratio = 0.5;
-    Simulation sim = make_sphere_bed(o);
-    while (sim.time() < 0.12) sim.step();
-    sim.set_gravity(Vec3(0, 0, -9.81));
-    sim.set_damping_ratio(0.0);
-    sim.set_local_damping(0.7);
-    sim.run(5000);
-    return sim;
-  }();
-  return bed;
+// Pours and settles a bed; benchmarks step copies of it.
+Simulation pour_dense_bed(bool spatial_order) {
+  SphereBedOptions o;  // 1,936 spheres of 36.25 mm, kn = ks = 5.08e9 N/m
+  o.spatial_order = spatial_order;
+  o.friction = 0.5;
+  o.rubber_base = false;
+  // Fast pour: 20 g, no local damping (it slows free fall to 0.3 g), inelastic
+  // contacts. Then the benchmark conditions.
+  o.gravity = Vec3(0, 0, -9.81 * 20);
+  o.local_damping = 0.0;
+  o.damping_ratio = 0.5;
+  Simulation sim = make_sphere_bed(o);
+  while (sim.time() < 0.12) sim.step();
+  sim.set_gravity(Vec3(0, 0, -9.81));
+  sim.set_damping_ratio(0.0);
+  sim.set_local_damping(0.7);
+  sim.run(5000);
+  return sim;
+}
+
+// Poured once per process and per body order.
+const Simulation& settled_dense_bed(bool spatial_order) {
+  static const Simulation spatial = pour_dense_bed(true);
+  if (spatial_order) return spatial;
+  static const Simulation shuffled = pour_dense_bed(false);
+  return shuffled;
 }
 
 void DenseBed(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   omp_set_num_threads(threads);
-  Simulation sim = settled_dense_bed();
+  Simulation sim = settled_dense_bed(state.range(1) == 0);
   const long steps_per_iteration = 200;
   const long builds0 = sim.neighbour_builds();
   for (auto _ : state) sim.run(steps_per_iteration);
@@ -60,8 +67,17 @@ void DenseBed(benchmark::State& state) {
   state.counters["dt_us"] = sim.dt() * 1e6;
   omp_set_num_threads(omp_get_num_procs());
 }
-BENCHMARK(DenseBed)->Arg(1)->Arg(2)->ArgName("threads")->UseRealTime()->MinTime(3.0)->Unit(
-    benchmark::kMillisecond);
+// Second argument: 0 = bodies in spatial order (as the packings give them), 1 = the
+// same bed with bodies numbered at random, to show what locality is worth.
+BENCHMARK(DenseBed)
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({1, 1})
+    ->Args({2, 1})
+    ->ArgNames({"threads", "random_order"})
+    ->UseRealTime()
+    ->MinTime(3.0)
+    ->Unit(benchmark::kMillisecond);
 
 void EnergyDrift(benchmark::State& state) {
   const double safety = state.range(0) / 100.0;
