@@ -22,18 +22,8 @@ inline constexpr int kSphereCount = 1936;
 inline Material ballast_material(double mu = kFrictionCompaction) {
   return {kBallStiffness, kBallStiffness, mu};
 }
-inline Material wall_material(double mu = kFrictionCompaction) {
-  return {kBallStiffness, kBallStiffness, mu};
-}
 inline Material rubber_base(double mu = kFrictionCompaction) {
   return {kRubberStiffness, kRubberStiffness, mu};
-}
-
-inline Vec3 box_lo() {
-  return Vec3::Zero();
-}
-inline Vec3 box_hi() {
-  return Vec3(kLength, kWidth, kHeight);
 }
 
 }  // namespace ballast::box_test

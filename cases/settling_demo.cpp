@@ -64,7 +64,10 @@ SettlingDemoResult run_settling_demo(const SettlingDemoOptions& o, std::ostream&
   sim.prepare();
   print_header(out);
 
-  const auto at_rest = [&] { return sim.energy().kinetic() < 1e-3 * sim.energy().gravity_work; };
+  const auto at_rest = [&] {
+    const EnergyBudget e = sim.energy();
+    return e.kinetic() < 1e-3 * e.gravity_work;
+  };
   const auto balanced = [&] { return sim.unbalanced_force_ratio() < o.target_ratio; };
   run_phase(sim, "pour", o, out, at_rest);
   sim.set_damping_ratio(0.0);

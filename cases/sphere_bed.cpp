@@ -22,11 +22,11 @@ Simulation make_sphere_bed(const SphereBedOptions& o) {
   s.dt_safety = o.dt_safety;
   s.log = o.log;
   Simulation sim(s);
-  const Index mat = sim.add_material({o.stiffness, o.stiffness, o.friction});
-  const Material side{o.stiffness, o.stiffness, o.friction};
-  const Material base = o.rubber_base ? box_test::rubber_base(o.friction)
-                                      : Material{o.stiffness, o.stiffness, o.friction};
-  for (const Wall& w : box_container(lo, hi, side, base, /*open_top=*/true)) sim.add_wall(w);
+  // Balls and side walls share one material; the base is rubber or the same.
+  const Material stiff{o.stiffness, o.stiffness, o.friction};
+  const Index mat = sim.add_material(stiff);
+  const Material base = o.rubber_base ? box_test::rubber_base(o.friction) : stiff;
+  for (const Wall& w : box_container(lo, hi, stiff, base, /*open_top=*/true)) sim.add_wall(w);
   std::vector<Vec3> centres = random_loose_packing(o.count, r, lo, hi, o.volume_fraction, o.seed);
   if (!o.spatial_order) {
     // Fisher–Yates with the bed's own seed: the same bed, bodies numbered at random.

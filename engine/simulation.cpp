@@ -209,15 +209,19 @@ void Simulation::prepare() {
   update_timestep();
   prepared_ = true;
   needs_rebuild_ = false;
-  const double ratio = dt_ / dt_critical_;
+  const double ratio = dt_ / estimate_.critical;
   if (settings_.log) {
-    *settings_.log << "timestep: dt = " << dt_ << " s, critical = " << dt_critical_
+    *settings_.log << "timestep: dt = " << dt_ << " s, critical = " << estimate_.critical
                    << " s, dt/dt_critical = " << ratio
-                   << (settings_.fixed_dt ? " (fixed)" : " (automatic)") << "\n";
+                   << (settings_.fixed_dt ? " (fixed)" : " (automatic)") << "; limited by body "
+                   << estimate_.limiting_body
+                   << (estimate_.limited_by_rotation ? " (mostly rotation)"
+                                                     : " (mostly translation)")
+                   << "\n";
   }
   if (settings_.fixed_dt && ratio > 1.0) {
     std::ostringstream m;
-    m << "dt = " << dt_ << " s exceeds the critical timestep estimate " << dt_critical_
+    m << "dt = " << dt_ << " s exceeds the critical timestep estimate " << estimate_.critical
       << " s (dt/dt_critical = " << ratio << ")";
     if (settings_.strict_timestep) throw SetupError(m.str() + " and strict_timestep is on");
     if (settings_.log) *settings_.log << "warning: " << m.str() << "; the run may blow up\n";
@@ -225,10 +229,9 @@ void Simulation::prepare() {
 }
 
 void Simulation::update_timestep() {
-  const TimestepEstimate est = estimate_critical_timestep(
-      balls_, bodies_, materials_, walls_, ball_contacts_, wall_contacts_, settings_.damping_ratio);
-  dt_critical_ = est.critical;
-  dt_ = settings_.fixed_dt ? *settings_.fixed_dt : settings_.dt_safety * dt_critical_;
+  estimate_ = estimate_critical_timestep(balls_, bodies_, materials_, walls_, ball_contacts_,
+                                         wall_contacts_, settings_.damping_ratio);
+  dt_ = settings_.fixed_dt ? *settings_.fixed_dt : settings_.dt_safety * estimate_.critical;
 }
 
 void Simulation::rebuild_neighbours() {
@@ -324,7 +327,7 @@ void Simulation::step() {
       m << " speed " << bodies_.velocity[r.bad_body].norm() << " m/s exceeds max_speed "
         << settings_.max_speed << " m/s: kinetic energy is exploding";
     }
-    m << " (dt = " << dt_ << " s, critical estimate " << dt_critical_ << " s)";
+    m << " (dt = " << dt_ << " s, critical estimate " << estimate_.critical << " s)";
     throw SimulationError(steps_, r.bad_body, r.bad_is_nan ? "velocity" : "speed", m.str());
   }
 

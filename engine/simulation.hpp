@@ -22,6 +22,7 @@
 #include "engine/diagnostics.hpp"
 #include "engine/material.hpp"
 #include "engine/servo.hpp"
+#include "engine/timestep.hpp"
 #include "engine/walls.hpp"
 
 namespace ballast {
@@ -82,7 +83,7 @@ class Simulation {
   double time() const { return time_; }
   long step_count() const { return steps_; }
   double dt() const { return dt_; }
-  double critical_dt() const { return dt_critical_; }
+  double critical_dt() const { return estimate_.critical; }
   double skin() const { return skin_; }
   long neighbour_builds() const { return builds_; }
   const SimulationSettings& settings() const { return settings_; }
@@ -121,7 +122,8 @@ class Simulation {
   std::vector<Vec3> wall_reference_;       // wall displacements at the last build
   std::vector<Vec3> wall_force_;
   double wall_work_ = 0.0;
-  double time_ = 0.0, dt_ = 0.0, dt_critical_ = 0.0, skin_ = 0.0, max_radius_ = 0.0;
+  TimestepEstimate estimate_;  // the last critical-timestep estimate
+  double time_ = 0.0, dt_ = 0.0, skin_ = 0.0, max_radius_ = 0.0;
   long steps_ = 0, builds_ = 0;
   bool prepared_ = false, friction_ = false, needs_rebuild_ = false;
 };
