@@ -7,6 +7,7 @@ Index BodyStore::add(const Vec3& x, const Quat& q, double m, const Vec3& princip
   position.push_back(x);
   velocity.push_back(Vec3::Zero());
   angular_velocity.push_back(Vec3::Zero());
+  angular_momentum.push_back(Vec3::Zero());
   force.push_back(Vec3::Zero());
   torque.push_back(Vec3::Zero());
   orientation.push_back(q.normalized());
@@ -17,11 +18,16 @@ Index BodyStore::add(const Vec3& x, const Quat& q, double m, const Vec3& princip
   first_ball.push_back(first);
   ball_count.push_back(count);
   is_sphere.push_back(sphere ? 1 : 0);
-  initial_position.push_back(x);
+  reference_position.push_back(x);
   rotation.push_back(Vec3::Zero());
   gravity_work.push_back(0.0);
   damping_dissipated.push_back(0.0);
   return size() - 1;
+}
+
+void BodyStore::reset_motion_reference() {
+  reference_position = position;
+  for (Vec3& r : rotation) r.setZero();
 }
 
 }  // namespace ballast

@@ -47,15 +47,14 @@ void integrate(const IntegratorSettings& s, const ContactList& ball_contacts,
     if (bodies.is_sphere[b]) {
       w_new = w_old + (dt * bodies.inv_inertia[b][0]) * torque;
     } else {
-      const Mat3 rot = bodies.orientation[b].toRotationMatrix();
-      const Vec3 w_body = rot.transpose() * w_old;
-      const Vec3 m_body = rot.transpose() * torque;
-      w_new = rot * (w_body + dt * bodies.inv_inertia[b].cwiseProduct(m_body));
-      const double angle = w_new.norm() * dt;
-      if (angle > 0.0) {
-        const Quat dq(Eigen::AngleAxisd(angle, w_new.normalized()));
-        bodies.orientation[b] = (dq * bodies.orientation[b]).normalized();
-      }
+      RotationState rs{bodies.orientation[b], w_old, bodies.angular_momentum[b]};
+      if (s.rotation == RotationIntegrator::kFull)
+        rotate_full(rs, torque, bodies.inv_inertia[b], dt);
+      else
+        rotate_pfc(rs, torque, bodies.inv_inertia[b], dt);
+      bodies.orientation[b] = rs.orientation;
+      bodies.angular_momentum[b] = rs.angular_momentum;
+      w_new = rs.angular_velocity;
     }
     bodies.angular_velocity[b] = w_new;
     bodies.rotation[b] += dt * w_new;

@@ -7,14 +7,15 @@
 //
 // Rotation. A sphere has an isotropic inertia, so ω += dt·M/I with no frame
 // changes and no orientation to keep (its accumulated rotation vector Σω·dt is all
-// the paper measures). A clump integrates in its principal frame with the
-// gyroscopic term ω×Iω dropped, as PFC3D 3.x does (eq 17 with [W] = 0); its
-// orientation quaternion is advanced by the rotation ω·dt and its balls re-placed.
+// the paper measures). A clump turns by one of the two integrators of
+// rigid_rotation.hpp (`pfc`: eq 17 without the gyroscopic term; `full`: Euler's
+// equations) and its balls are re-placed from the new orientation.
 #pragma once
 
 #include "engine/ball_store.hpp"
 #include "engine/body_store.hpp"
 #include "engine/contact_list.hpp"
+#include "engine/rigid_rotation.hpp"
 
 namespace ballast {
 
@@ -23,6 +24,7 @@ struct IntegratorSettings {
   double local_damping = 0.7;   // α, PFC's default
   Vec3 gravity = Vec3::Zero();  // m/s², only for the energy ledger (force already has m·g)
   double max_speed = 100.0;     // m/s; faster is treated as a blow-up
+  RotationIntegrator rotation = RotationIntegrator::kPfc;  // for clumps
 };
 
 struct IntegrationReport {

@@ -153,7 +153,11 @@ void Simulation::set_body_velocity(Index body, const Vec3& v) {
 
 void Simulation::set_body_angular_velocity(Index body, const Vec3& w) {
   bodies_.angular_velocity.at(body) = w;
+  bodies_.angular_momentum[body] =
+      spin_angular_momentum(bodies_.orientation[body], bodies_.inertia[body], w);
 }
+
+void Simulation::reset_motion_reference() { bodies_.reset_motion_reference(); }
 
 bool Simulation::scene_has_friction() const {
   for (const Material& m : materials_)
@@ -307,7 +311,8 @@ void Simulation::step() {
   if (needs_rebuild_) rebuild_neighbours();
   const bool has_walls = !walls_.empty();
   const ForceSettings fs{dt_, settings_.damping_ratio, friction_};
-  const IntegratorSettings is{dt_, settings_.local_damping, settings_.gravity, settings_.max_speed};
+  const IntegratorSettings is{dt_, settings_.local_damping, settings_.gravity, settings_.max_speed,
+                              settings_.rotation};
   IntegrationReport r;
   // One parallel region per step and two barriers: contact loops (no barrier
   // between them), then per body gather + integrate (forces.hpp, integrator.hpp).

@@ -21,6 +21,7 @@
 #include "engine/contact_list.hpp"
 #include "engine/diagnostics.hpp"
 #include "engine/material.hpp"
+#include "engine/rigid_rotation.hpp"
 #include "engine/servo.hpp"
 #include "engine/timestep.hpp"
 #include "engine/walls.hpp"
@@ -39,6 +40,7 @@ struct SimulationSettings {
   std::optional<double> skin;            // m; unset: 0.2 × mean ball radius
   double max_speed = 100.0;              // m/s; a body faster than this means blow-up
   std::string contact_model = "linear";  // a name from kContactModels (contact_law.hpp)
+  RotationIntegrator rotation = RotationIntegrator::kPfc;  // clumps: "pfc" or "full"
   std::ostream* log = nullptr;           // where the start-up report goes (nullptr: silent)
 };
 
@@ -71,6 +73,9 @@ class Simulation {
   void set_wall_velocity(Index wall, const Vec3& v);
   void set_body_velocity(Index body, const Vec3& v);
   void set_body_angular_velocity(Index body, const Vec3& w);
+  // Displacements and accumulated rotations are measured from now on (the box test
+  // resets at the start of loading and of unloading).
+  void reset_motion_reference();
 
   // ---- running ----
   // Validates the scene, builds neighbours, sets dt and prints the dt report.

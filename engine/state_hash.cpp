@@ -26,6 +26,7 @@ std::uint64_t state_hash(const BodyStore& bodies, const ContactList& bc, const C
   f.all(bodies.position);
   f.all(bodies.velocity);
   f.all(bodies.angular_velocity);
+  f.all(bodies.angular_momentum);
   for (const Quat& q : bodies.orientation) f.bytes(q.coeffs().data(), 4 * sizeof(double));
   f.all(bc.a);
   f.all(bc.b);
