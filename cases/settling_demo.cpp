@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <ostream>
 
-#include "cases/sphere_bed.hpp"
+#include "cases/bed.hpp"
 
 namespace ballast {
 
@@ -48,7 +48,7 @@ void run_phase(Simulation& sim, const char* name, const SettlingDemoOptions& o, 
 }  // namespace
 
 SettlingDemoResult run_settling_demo(const SettlingDemoOptions& o, std::ostream& out) {
-  SphereBedOptions bed;
+  BedOptions bed;
   bed.count = o.spheres;
   bed.seed = o.seed;
   bed.dt_safety = o.dt_safety;
@@ -56,7 +56,7 @@ SettlingDemoResult run_settling_demo(const SettlingDemoOptions& o, std::ostream&
   bed.local_damping = 0.0;
   bed.damping_ratio = o.pour_damping_ratio;
   bed.log = &out;
-  Simulation sim = make_sphere_bed(bed);
+  Simulation sim = make_bed(bed);
   out << "settling demo: " << o.spheres << " spheres of " << bed.diameter * 1e3 << " mm in the "
       << bed.length * 1e3 << " x " << bed.width * 1e3
       << " mm box on a rubber base (Lu & McDowell 2007, box test)\n";

@@ -11,13 +11,13 @@
 
 #include <cmath>
 
-#include "cases/sphere_bed.hpp"
+#include "cases/bed.hpp"
 
 using namespace ballast;
 
 TEST(EnergyBudget, ClosesForUndampedFrictionalSettling) {
   omp_set_num_threads(omp_get_num_procs());  // runs alone (RUN_SERIAL): use every core
-  SphereBedOptions o;
+  BedOptions o;
   o.count = 1000;
   o.friction = 0.5;
   o.local_damping = 0.0;
@@ -25,7 +25,7 @@ TEST(EnergyBudget, ClosesForUndampedFrictionalSettling) {
   o.rubber_base = false;
   o.gravity = Vec3(0, 0, -9.81 * 10);  // enhanced gravity: more collisions per step
   o.dt_safety = 0.15;
-  Simulation sim = make_sphere_bed(o);
+  Simulation sim = make_bed(o);
   sim.prepare();
   // Initial energy: potential energy above the base (the initial kinetic energy is 0).
   double e0 = 0.0;

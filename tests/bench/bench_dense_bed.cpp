@@ -16,7 +16,7 @@
 
 #include <cmath>
 
-#include "cases/sphere_bed.hpp"
+#include "cases/bed.hpp"
 
 using namespace ballast;
 
@@ -24,7 +24,7 @@ namespace {
 
 // Pours and settles a bed; benchmarks step copies of it.
 Simulation pour_dense_bed(bool spatial_order) {
-  SphereBedOptions o;  // 1,936 spheres of 36.25 mm, kn = ks = 5.08e9 N/m
+  BedOptions o;  // 1,936 spheres of 36.25 mm, kn = ks = 5.08e9 N/m
   o.spatial_order = spatial_order;
   o.friction = 0.5;
   o.rubber_base = false;
@@ -33,7 +33,7 @@ Simulation pour_dense_bed(bool spatial_order) {
   o.gravity = Vec3(0, 0, -9.81 * 20);
   o.local_damping = 0.0;
   o.damping_ratio = 0.5;
-  Simulation sim = make_sphere_bed(o);
+  Simulation sim = make_bed(o);
   while (sim.time() < 0.12) sim.step();
   sim.set_gravity(Vec3(0, 0, -9.81));
   sim.set_damping_ratio(0.0);
@@ -84,14 +84,14 @@ void EnergyDrift(benchmark::State& state) {
   double drift = 0.0;
   long balls = 0, steps = 0;
   for (auto _ : state) {
-    SphereBedOptions o;
+    BedOptions o;
     o.count = 300;
     o.friction = 0.5;
     o.local_damping = 0.0;
     o.rubber_base = false;
     o.gravity = Vec3(0, 0, -98.1);
     o.dt_safety = safety;
-    Simulation sim = make_sphere_bed(o);
+    Simulation sim = make_bed(o);
     while (sim.time() < 0.05) sim.step();
     const EnergyBudget e = sim.energy();
     drift = std::abs(e.balance()) / e.gravity_work;
