@@ -159,6 +159,32 @@ void Simulation::set_body_angular_velocity(Index body, const Vec3& w) {
 
 void Simulation::reset_motion_reference() { bodies_.reset_motion_reference(); }
 
+void Simulation::set_size_scale(double scale) {
+  require_setup(scale > 0.0 && scale <= 1.0, "size scale", scale, "(0, 1]");
+  if (full_radius_.empty()) {
+    full_radius_ = balls_.radius;
+    full_offset_ = balls_.offset;
+    max_full_radius_ = max_radius_;
+  }
+  size_scale_ = scale;
+  const Index n = balls_.size();
+  double shift2 = 0.0;
+  for (Index k = 0; k < n; ++k) {
+    const Index b = balls_.body[k];
+    balls_.radius[k] = scale * full_radius_[k];
+    balls_.offset[k] = scale * full_offset_[k];
+    if (!bodies_.is_sphere[b])
+      balls_.position[k] = bodies_.position[b] + bodies_.orientation[b] * balls_.offset[k];
+    if (prepared_)
+      shift2 = std::max(shift2, (balls_.position[k] - reference_positions_[k]).squaredNorm());
+  }
+  max_radius_ = scale * max_full_radius_;
+  // A pair listed at the last build stays valid while shift_a + shift_b plus the
+  // growth of r_a + r_b stays below the skin.
+  const double growth = std::max(0.0, scale - scale_at_build_) * max_full_radius_;
+  if (prepared_ && std::sqrt(shift2) + growth > 0.5 * skin_) needs_rebuild_ = true;
+}
+
 bool Simulation::scene_has_friction() const {
   for (const Material& m : materials_)
     if (m.mu > 0.0) return true;
@@ -267,6 +293,8 @@ void Simulation::rebuild_neighbours() {
   wall_contacts_.rebuild(std::move(wa), std::move(wb), friction_, n, false);
 
   reference_positions_ = balls_.position;
+  scale_at_build_ = size_scale_;
+  needs_rebuild_ = false;
   wall_reference_.resize(walls_.size());
   for (Index w = 0; w < nw; ++w) wall_reference_[w] = walls_[w].displacement;
   ++builds_;
@@ -347,7 +375,9 @@ void Simulation::step() {
   time_ += dt_;
   ++steps_;
   const double half = 0.5 * skin_;
-  needs_rebuild_ = r.max_ball_shift2 > half * half || wall_shift2 > half * half;
+  const double growth = std::max(0.0, size_scale_ - scale_at_build_) * max_full_radius_;
+  needs_rebuild_ = needs_rebuild_ || std::sqrt(r.max_ball_shift2) + growth > half ||
+                   wall_shift2 > half * half;
 }
 
 void Simulation::run(long steps) {

@@ -76,6 +76,13 @@ class Simulation {
   // Displacements and accumulated rotations are measured from now on (the box test
   // resets at the start of loading and of unloading).
   void reset_motion_reference();
+  // PFC-style radius expansion: every ball's radius and every clump's ball offsets
+  // become `scale` × their values as added, about each body's centre of mass;
+  // masses and inertias keep their full-size values. A scene adds particles at full
+  // size, shrinks them before the first step and grows them back while cycling
+  // (the paper's sample preparation). scale in (0, 1].
+  void set_size_scale(double scale);
+  double size_scale() const { return size_scale_; }
 
   // ---- running ----
   // Validates the scene, builds neighbours, sets dt and prints the dt report.
@@ -127,6 +134,10 @@ class Simulation {
   std::vector<Vec3> wall_reference_;       // wall displacements at the last build
   std::vector<Vec3> wall_force_;
   double wall_work_ = 0.0;
+  // Radius expansion (set_size_scale): full-size geometry, kept only once used.
+  std::vector<double> full_radius_;
+  std::vector<Vec3> full_offset_;
+  double size_scale_ = 1.0, scale_at_build_ = 1.0, max_full_radius_ = 0.0;
   TimestepEstimate estimate_;  // the last critical-timestep estimate
   double time_ = 0.0, dt_ = 0.0, skin_ = 0.0, max_radius_ = 0.0;
   long steps_ = 0, builds_ = 0;

@@ -170,3 +170,38 @@ TEST(ClumpDynamics, GeneratedClumpComesToRestOnAFloor) {
   EXPECT_NEAR(-sim.wall_force(floor).z(), weight, 1e-3 * weight);
   EXPECT_NEAR(sim.wall_force(floor).head<2>().norm(), 0.0, 1e-3 * weight);
 }
+
+// Radius expansion (the paper's sample preparation): balls and offsets shrink and
+// grow about the centre of mass, masses stay, and neighbours are found again as
+// the balls grow into each other.
+TEST(ClumpDynamics, SizeScaleShrinksAndGrowsAboutTheCentreOfMass) {
+  Simulation sim(scenes::bare_settings());
+  const Index mat = sim.add_material({1e6, 1e6, 0.0});
+  Dumbbell db;
+  const Quat q(Eigen::AngleAxisd(0.5, Vec3(0, 0, 1)));
+  const Index a = sim.add_clump(Vec3(0.1, 0, 0), q, db.offsets, db.radii, db.mass(),
+                                db.inertia(), mat);
+  // A sphere 1 mm clear of the dumbbell's +x ball at full size.
+  const Vec3 tip = Vec3(0.1, 0, 0) + q * db.offsets[1];
+  const Index s = sim.add_sphere(tip + Vec3(0, 0.021, 0), 0.01, 2600, mat);
+  sim.set_size_scale(0.5);
+  const Index first = sim.bodies().first_ball[a];
+  EXPECT_NEAR(sim.balls().radius[first + 1], 0.005, 1e-15);
+  EXPECT_NEAR((sim.balls().position[first + 1] - (Vec3(0.1, 0, 0) + 0.5 * (q * db.offsets[1])))
+                  .norm(), 0.0, 1e-15);
+  const double mass = sim.bodies().mass[a];
+  sim.prepare();
+  sim.run(10);
+  EXPECT_EQ(sim.contacts().ball_contacts, 0);
+  // Grow back in 100 steps; at full size the gap is 1 mm again.
+  for (int k = 1; k <= 100; ++k) {
+    sim.set_size_scale(0.5 + 0.005 * k);
+    sim.step();
+  }
+  EXPECT_EQ(sim.size_scale(), 1.0);
+  EXPECT_EQ(sim.bodies().mass[a], mass);
+  EXPECT_EQ(sim.contacts().ball_contacts, 0);  // 1 mm apart at full size
+  sim.set_body_velocity(s, Vec3(0, -0.5, 0));
+  while (sim.time() < 0.02 && sim.contacts().ball_contacts == 0) sim.step();
+  EXPECT_EQ(sim.contacts().ball_contacts, 1);  // found after the growth rebuilds
+}
