@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -305,7 +304,7 @@ TEST(GridPorosity, RefusesBadInputNamingTheField) {
 // seeds the grid's deviation had std 1.4e-3: tolerance 7e-3 (5σ). The measurement
 // sphere sums the heavy overlaps twice: it expects 1 − N·E[V]/V_box = −0.081 (std
 // 0.010 over the same seeds; tolerance 0.05), far below the true 0.339.
-TEST(GridPorosity, RealisticBedIsFastAndMatchesBooleanModel) {
+TEST(GridPorosity, RealisticBedMatchesBooleanModel) {
   const Vec3 lo(0.225, 0.0, 0.05), hi(0.475, 0.3, 0.35);
   const double r0 = 0.003, r1 = 0.006;
   const int n = 65000;
@@ -320,17 +319,10 @@ TEST(GridPorosity, RealisticBedIsFastAndMatchesBooleanModel) {
   const double mean_r3 = (std::pow(r1, 4) - std::pow(r0, 4)) / (4 * (r1 - r0));
   const double p = 4.0 / 3.0 * kPi * mean_r3 / (bhi - blo).prod();
 
-  const auto t0 = std::chrono::steady_clock::now();
+  // Speed is a benchmark matter (docs/POROSITY.md quotes ~13 ms on one thread).
   const GridPorosityResult g = grid_porosity(balls, lo, hi, 0.005);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  RecordProperty("grid_porosity_ms", std::to_string(1e3 * seconds));
-  std::printf("grid_porosity: %d balls, %lld cubes, %.1f ms on %d thread(s)\n", n,
-              static_cast<long long>(g.total_cubes), 1e3 * seconds, omp_get_max_threads());
   EXPECT_EQ(g.total_cubes, 180000);
   EXPECT_NEAR(g.porosity, std::pow(1 - p, n), 7e-3);
-  // Measured ~12 ms on one thread; a limit 80 times that survives a busy shared machine.
-  EXPECT_LT(seconds, 1.0);
 
   const MeasurementSphereResult s = measurement_sphere_porosity(balls, (lo + hi) / 2, 0.1);
   EXPECT_NEAR(s.porosity, 1 - n * p, 0.05);
