@@ -147,6 +147,24 @@ void Simulation::set_wall_velocity(Index wall, const Vec3& v) {
   walls_[wall].motion = v.isZero(0.0) ? WallMotion::Fixed : WallMotion::Prescribed;
 }
 
+void Simulation::set_servo_target(Index servo, std::function<double(double)> target) {
+  require_setup(servo >= 0 && servo < static_cast<Index>(servos_.size()), "servo index", servo,
+                "an existing servo");
+  require_setup(static_cast<bool>(target), "servo target force", "empty", "a function of time");
+  servos_[servo].target_force = std::move(target);
+}
+
+void Simulation::move_wall(Index wall, const Vec3& delta) {
+  require_setup(wall >= 0 && wall < static_cast<Index>(walls_.size()), "wall index", wall,
+                "an existing wall");
+  Wall& w = walls_[wall];
+  w.point += delta;
+  w.lo += delta;
+  w.hi += delta;
+  w.displacement += delta;
+  needs_rebuild_ = true;
+}
+
 void Simulation::set_body_velocity(Index body, const Vec3& v) {
   bodies_.velocity.at(body) = v;
 }

@@ -1,0 +1,192 @@
+#include "cases/box_test_load.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ostream>
+
+#include "engine/porosity.hpp"
+
+namespace ballast {
+
+namespace {
+
+constexpr double kDeg = 180.0 / kPi;
+
+ContactSnapshot snapshot_contacts(const Simulation& sim) {
+  ContactSnapshot s;
+  s.stats = sim.contacts();
+  const ContactList& c = sim.ball_contacts();
+  const BallStore& b = sim.balls();
+  for (Index k = 0; k < c.size(); ++k) {
+    if (!c.active[k]) continue;
+    s.from.push_back(b.position[c.a[k]]);
+    s.to.push_back(b.position[c.b[k]]);
+    s.force.push_back(c.force[k].norm());
+  }
+  return s;
+}
+
+// Rotation angles (deg) of the accumulated rotation vectors a − b.
+std::vector<double> angles(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  std::vector<double> out(a.size());
+  for (std::size_t k = 0; k < a.size(); ++k) out[k] = (a[k] - b[k]).norm() * kDeg;
+  return out;
+}
+
+RotationStats stats_of(const std::vector<double>& deg) {
+  RotationStats s;
+  for (double d : deg) {
+    s.mean_deg += d;
+    s.max_deg = std::max(s.max_deg, d);
+  }
+  if (!deg.empty()) s.mean_deg /= double(deg.size());
+  return s;
+}
+
+double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double m = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) m = std::max(m, (a[k] - b[k]).norm());
+  return m;
+}
+
+void measure_porosity(const BoxTestScene& s, const Simulation& sim, double x0, double x1,
+                      double bottom, BoxTestResult& out) {
+  out.bed_height = bottom;
+  out.porosity_grid =
+      grid_porosity(sim.balls(), Vec3(x0, 0.0, 0.0), Vec3(x1, s.width, bottom), s.cube_side)
+          .porosity;
+  if (s.clumps) return;
+  const double r = std::min({s.sphere_radius, 0.5 * s.width, 0.25 * bottom});
+  for (double f : {0.25, 0.5, 0.75}) {
+    const double z = std::clamp(f * bottom, r, bottom - r);
+    out.sphere_heights.push_back(z);
+    out.porosity_spheres.push_back(
+        measurement_sphere_porosity(sim.balls(), Vec3(0.5 * (x0 + x1), 0.5 * s.width, z), r)
+            .porosity);
+  }
+}
+
+}  // namespace
+
+void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out,
+                   std::ostream* log) {
+  const double x0 = 0.5 * (s.length - s.sleeper_length), x1 = x0 + s.sleeper_length;
+  const double top = bed_top(sim, x0, x1);
+  // The sleeper: a rigid block over the full width, 1 mm above the bed.
+  Wall sleeper;
+  sleeper.name = "sleeper";
+  sleeper.shape = WallShape::Box;
+  sleeper.lo = Vec3(x0, -0.05 * s.width, top + 1e-3);
+  sleeper.hi = Vec3(x1, 1.05 * s.width, top + 1e-3 + s.sleeper_height);
+  sleeper.material = {s.wall_stiffness, s.wall_stiffness, s.friction_loading};
+  const Index wall = sim.add_wall(sleeper);
+  Servo servo;
+  servo.walls = {wall};
+  servo.axis = -Vec3::UnitZ();
+  const double preload = s.preload;
+  servo.target_force = [preload](double) { return preload; };
+  servo.max_speed = s.sleeper_max_speed;
+  const Index servo_id = sim.add_servo(servo);
+  measure_porosity(s, sim, x0, x1, top, out);
+  if (log)
+    *log << "stage 4: sleeper " << s.sleeper_length * 1e3 << " mm long on the bed at "
+         << top * 1e3 << " mm; grid porosity under it " << out.porosity_grid << "\n";
+
+  // Seat the sleeper at the preload.
+  sim.prepare();
+  out.stages.push_back(settle(sim, "preload", s.equilibrium_ratio, s.max_stage_steps, log));
+
+  // Cycles: F(t) = (Fmin + Fmax)/2 − (Fmax − Fmin)/2·cos(2πf(t − t0)).
+  const double t0 = sim.time();
+  sim.set_servo_target(servo_id, sinusoidal_load(s.preload, s.peak_load, s.frequency, t0));
+  sim.reset_motion_reference();
+  out.before = snapshot_contacts(sim);
+  out.position_start = sim.bodies().position;
+  const double z0 = sim.walls()[wall].displacement.z();
+  const double period = 1.0 / s.frequency;
+  const double t_peak = t0 + 0.5 * period, t_end = t0 + s.cycles * period;
+  std::vector<Vec3> rotation_peak;
+  bool peak_done = false;
+  double err2 = 0.0;
+  long samples = 0;
+  const auto start = std::chrono::steady_clock::now();
+  const long step0 = sim.step_count();
+  while (sim.time() < t_end) {
+    sim.step();
+    const Servo& sv = sim.servos()[servo_id];
+    const double err = sv.measured_force - sv.target_now;
+    out.max_force_error = std::max(out.max_force_error, std::abs(err));
+    err2 += err * err;
+    ++samples;
+    if ((sim.step_count() - step0) % s.series_every == 0) {
+      out.time.push_back(sim.time() - t0);
+      out.target_force.push_back(sv.target_now);
+      out.sleeper_force.push_back(sv.measured_force);
+      out.settlement.push_back(z0 - sim.walls()[wall].displacement.z());
+    }
+    if (!peak_done && sim.time() >= t_peak) {
+      peak_done = true;
+      out.at_peak = snapshot_contacts(sim);
+      out.position_peak = sim.bodies().position;
+      rotation_peak = sim.bodies().rotation;
+      out.settlement_peak = z0 - sim.walls()[wall].displacement.z();
+    }
+  }
+  out.stages.push_back({"cycle", sim.step_count() - step0, sim.time() - t0,
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                            .count(),
+                        sim.unbalanced_force_ratio(), true});
+  out.rms_force_error = samples ? std::sqrt(err2 / samples) : 0.0;
+  out.after = snapshot_contacts(sim);
+  out.position_end = sim.bodies().position;
+  const std::vector<Vec3> zero(sim.bodies().size(), Vec3::Zero());
+  out.rotation_deg_loading = angles(rotation_peak, zero);
+  out.rotation_deg_unloading = angles(sim.bodies().rotation, rotation_peak);
+  out.rotation_deg_cycle = angles(sim.bodies().rotation, zero);
+  out.rotation_loading = stats_of(out.rotation_deg_loading);
+  out.rotation_unloading = stats_of(out.rotation_deg_unloading);
+  out.rotation_cycle = stats_of(out.rotation_deg_cycle);
+  out.max_displacement_peak = max_distance(out.position_peak, out.position_start);
+  out.max_displacement_after = max_distance(out.position_end, out.position_start);
+  out.permanent_settlement = z0 - sim.walls()[wall].displacement.z();
+  out.resilient_settlement = out.settlement_peak - out.permanent_settlement;
+  out.loaded = true;
+  if (log)
+    *log << "  cycle: settlement " << out.settlement_peak * 1e3 << " mm at peak, permanent "
+         << out.permanent_settlement * 1e3 << " mm; force error max " << out.max_force_error
+         << " N, rms " << out.rms_force_error << " N\n";
+}
+
+BoxTestResult run_box_test(const BoxTestScene& s, std::ostream* log) {
+  const auto start = std::chrono::steady_clock::now();
+  PreparedBed bed = prepare_box_test(s, log);
+  BoxTestResult out;
+  out.scene_name = s.name;
+  out.stages = bed.stages;
+  Simulation& sim = bed.sim;
+  if (s.stop_after.empty()) {
+    load_box_test(s, sim, out, log);
+  } else {
+    const double x0 = 0.5 * (s.length - s.sleeper_length);
+    measure_porosity(s, sim, x0, x0 + s.sleeper_length, bed_top(sim, x0, x0 + s.sleeper_length),
+                     out);
+    out.before = snapshot_contacts(sim);
+    out.position_start = out.position_end = sim.bodies().position;
+    out.rotation_deg_cycle = angles(sim.bodies().rotation, std::vector<Vec3>(
+                                                               sim.bodies().size(), Vec3::Zero()));
+    out.rotation_cycle = stats_of(out.rotation_deg_cycle);
+  }
+  out.bodies = sim.bodies().size();
+  out.balls = sim.balls().size();
+  out.dt = sim.dt();
+  out.dt_critical = sim.critical_dt();
+  out.energy = sim.energy();
+  out.shape_index.resize(static_cast<std::size_t>(out.bodies));
+  for (Index b = 0; b < out.bodies; ++b) out.shape_index[b] = b;
+  out.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace ballast

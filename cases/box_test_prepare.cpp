@@ -1,0 +1,187 @@
+#include "cases/box_test_prepare.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <random>
+
+#include "cases/bed.hpp"
+#include "cases/sphere_packing.hpp"
+#include "engine/clump_batch.hpp"
+#include "engine/errors.hpp"
+
+namespace ballast {
+
+namespace {
+
+constexpr double kG = 9.81;
+
+double elapsed(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+void print(std::ostream* log, const StageReport& r, const Simulation& sim) {
+  if (!log) return;
+  const ContactStats c = sim.contacts();
+  char line[240];
+  std::snprintf(line, sizeof line,
+                "  %-10s %8ld steps %8.4f s simulated %7.1f s wall  unbalanced %.1e%s  "
+                "contacts %ld  Z %.2f\n",
+                r.name.c_str(), r.steps, r.simulated, r.seconds, r.unbalanced,
+                r.settled ? "" : " (step limit)", c.ball_contacts + c.wall_contacts,
+                c.coordination);
+  *log << line << std::flush;
+}
+
+SimulationSettings settings_for(const BoxTestScene& s, double bound) {
+  SimulationSettings st;
+  st.domain_lo = -Vec3::Constant(2.0 * bound);
+  st.domain_hi = Vec3(s.length, s.width, 2.0 * s.height) + Vec3::Constant(2.0 * bound);
+  st.gravity = Vec3::Zero();
+  st.local_damping = s.local_damping;
+  st.dt_safety = s.dt_safety;
+  st.rotation = s.rotation;
+  return st;
+}
+
+// The box's walls; the lid (last) closes the fill region during stage 1.
+void add_walls(Simulation& sim, const BoxTestScene& s, double lid_height, double mu) {
+  const Material sides{s.wall_stiffness, s.wall_stiffness, mu};
+  const Material base{s.base_stiffness, s.base_stiffness, mu};
+  for (const Wall& w : box_container(Vec3::Zero(), Vec3(s.length, s.width, lid_height), sides,
+                                     base, /*open_top=*/false))
+    sim.add_wall(w);
+}
+
+// Grows every particle from `from` to full size over the scene's expansion steps.
+StageReport grow(Simulation& sim, const std::string& name, double from, long steps,
+                 std::ostream* log) {
+  const auto start = std::chrono::steady_clock::now();
+  const double t0 = sim.time();
+  sim.set_size_scale(from);
+  sim.prepare();
+  for (long k = 1; k <= steps; ++k) {
+    sim.set_size_scale(from + (1.0 - from) * double(k) / double(steps));
+    sim.step();
+  }
+  StageReport r{name, steps, sim.time() - t0, elapsed(start), sim.unbalanced_force_ratio(), true};
+  print(log, r, sim);
+  return r;
+}
+
+}  // namespace
+
+StageReport settle(Simulation& sim, const std::string& name, double ratio, long max_steps,
+                   std::ostream* log) {
+  const auto start = std::chrono::steady_clock::now();
+  const double t0 = sim.time();
+  StageReport r{name};
+  for (r.steps = 1; r.steps <= max_steps; ++r.steps) {
+    sim.step();
+    if (r.steps >= 2000 && r.steps % 500 == 0 && sim.unbalanced_force_ratio() < ratio) {
+      r.settled = true;
+      break;
+    }
+  }
+  r.steps = std::min(r.steps, max_steps);
+  r.simulated = sim.time() - t0;
+  r.seconds = elapsed(start);
+  r.unbalanced = sim.unbalanced_force_ratio();
+  print(log, r, sim);
+  return r;
+}
+
+double bed_top(const Simulation& sim, double x0, double x1) {
+  double top = 0.0;
+  const BallStore& b = sim.balls();
+  for (Index k = 0; k < b.size(); ++k)
+    if (b.position[k].x() >= x0 && b.position[k].x() <= x1)
+      top = std::max(top, b.position[k].z() + b.radius[k]);
+  return top;
+}
+
+PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
+  const double r = nominal_radius(s);
+  const double sphere_volume = 4.0 / 3.0 * kPi * r * r * r;
+  const double area = s.length * s.width;
+  // Stage 1: the fill region holds the spheres at the initial porosity once grown.
+  const double fill = s.count * sphere_volume / ((1.0 - s.initial_porosity) * area);
+  require_setup(fill <= s.height, "particle count", s.count,
+                "few enough to fill at most the box height at the initial porosity (needs " +
+                    std::to_string(fill) + " m of " + std::to_string(s.height) + " m)");
+  // Random addition stalls near a volume fraction of 0.38: generate at a radius
+  // giving 0.3 at most.
+  const double shrink = std::min(0.9, std::cbrt(0.3 / (1.0 - s.initial_porosity)));
+  const double rs = shrink * r;
+  const double fraction = s.count * sphere_volume * shrink * shrink * shrink /
+                          (area * std::max(fill - 2.0 * rs, rs));
+  const std::vector<Vec3> centres =
+      random_loose_packing(static_cast<int>(s.count), rs, Vec3::Zero(),
+                           Vec3(s.length, s.width, fill), fraction, s.seed);
+  if (log)
+    *log << "stage 1: " << s.count << " spheres of " << s.diameter * 1e3 << " mm generated at "
+         << shrink << " of full radius in a " << s.length * 1e3 << " x " << s.width * 1e3 << " x "
+         << fill * 1e3 << " mm region (initial porosity " << s.initial_porosity << ")\n";
+
+  PreparedBed out{Simulation(settings_for(s, r)), {}, 0.0};
+  {
+    Simulation& sim = out.sim;
+    const Index mat = sim.add_material({s.ball_stiffness, s.ball_stiffness, s.friction_compaction});
+    add_walls(sim, s, fill, s.friction_compaction);
+    for (const Vec3& p : centres) sim.add_sphere(p, r, s.density, mat);
+    out.stages.push_back(grow(sim, "expand", shrink, s.expansion_steps, log));
+    out.stages.push_back(settle(sim, "cycle", s.equilibrium_ratio, s.max_stage_steps, log));
+    out.dt_spheres = sim.dt();
+  }
+
+  if (s.clumps) {
+    // Stage 2: clumps in the spheres' places, shrunk by 1/factor so each lies inside
+    // its sphere, then grown back under gravity with the lid gone.
+    const ClumpParams& p = *s.clumps;
+    ClumpMassOptions mass{s.mass_mode, s.density, s.mass_accuracy};
+    const std::vector<ClumpTemplate> templates =
+        generate_clump_templates(p, mass, static_cast<std::size_t>(s.count), s.seed);
+    const double bound = r * p.virtual_sphere_factor;
+    Simulation sim(settings_for(s, bound));
+    const Index mat = sim.add_material({s.ball_stiffness, s.ball_stiffness, s.friction_compaction});
+    add_walls(sim, s, 2.0 * s.height, s.friction_compaction);
+    std::mt19937_64 rng(s.seed ^ 0x5851f42d4c957f2dull);
+    long balls = 0;
+    for (Index k = 0; k < out.sim.bodies().size(); ++k) {
+      const ClumpTemplate& t = templates[static_cast<std::size_t>(k)];
+      const double u1 = unit_uniform(rng()), u2 = unit_uniform(rng()), u3 = unit_uniform(rng());
+      const Quat turn = uniform_rotation(u1, u2, u3);
+      const Vec3 centre = out.sim.bodies().position[k];
+      sim.add_clump(centre + turn * t.generation_centre, turn * Quat(t.generation_rotation), t, mat);
+      balls += t.ball_count();
+    }
+    if (log)
+      *log << "stage 2: " << s.count << " clumps of " << s.shape << " (" << balls
+           << " balls, mass mode " << mass_mode_name(s.mass_mode) << ", rotation "
+           << rotation_integrator_name(s.rotation) << ") replace the spheres\n";
+    sim.set_gravity(Vec3(0, 0, -kG));
+    out.stages.push_back(grow(sim, "clumps", 1.0 / p.virtual_sphere_factor, s.expansion_steps, log));
+    out.stages.push_back(settle(sim, "relax", s.equilibrium_ratio, s.max_stage_steps, log));
+    out.sim = std::move(sim);
+  } else {
+    // The lid goes: move it far above the bed.
+    out.sim.move_wall(static_cast<Index>(out.sim.walls().size()) - 1, Vec3(0, 0, s.height));
+  }
+  if (s.stop_after == "prepare") return out;
+
+  // Stage 3: compaction.
+  Simulation& sim = out.sim;
+  if (log) *log << "stage 3: compaction at " << s.gravity_factor << " g, then 1 g\n";
+  sim.set_gravity(Vec3(0, 0, -kG * s.gravity_factor));
+  out.stages.push_back(settle(sim, "compact", s.equilibrium_ratio, s.max_stage_steps, log));
+  sim.set_gravity(Vec3(0, 0, -kG));
+  out.stages.push_back(settle(sim, "1 g", s.equilibrium_ratio, s.max_stage_steps, log));
+  sim.set_all_friction(s.friction_loading);
+  out.stages.push_back(settle(sim, "mu=" + std::to_string(s.friction_loading).substr(0, 4),
+                              s.equilibrium_ratio, s.max_stage_steps, log));
+  return out;
+}
+
+}  // namespace ballast

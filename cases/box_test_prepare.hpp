@@ -1,0 +1,50 @@
+// Sample preparation of the box test, as the paper describes it (section 3):
+//   1. spheres   generated at random without overlap at a reduced radius in a
+//                closed box, grown to full size (PFC radius expansion) and cycled
+//                to equilibrium; then the lid is lifted away;
+//   2. clumps    (clump samples) each sphere replaced by a clump generated in its
+//                virtual sphere, at a random orientation, shrunk to fit inside the
+//                sphere and grown back, so the overlaps relax gradually;
+//   3. compact   enhanced gravity with friction 0.3, gravity back to 9.81 m/s², then
+//                friction raised to its loading value; each ends at equilibrium.
+// Every settling stage ends when the unbalanced-force ratio falls below the scene's
+// equilibrium_ratio (checked every 500 steps) or after max_stage_steps.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "cases/box_test_scene.hpp"
+#include "engine/simulation.hpp"
+
+namespace ballast {
+
+struct StageReport {
+  std::string name;
+  long steps = 0;
+  double simulated = 0.0;  // s
+  double seconds = 0.0;    // wall-clock s
+  double unbalanced = 0.0;  // ratio at the end
+  bool settled = false;     // ended by the equilibrium rule, not the step limit
+};
+
+struct PreparedBed {
+  Simulation sim;
+  std::vector<StageReport> stages;
+  double dt_spheres = 0.0;  // s, timestep of stage 1
+};
+
+// Runs stages 1-3 (or fewer: scene.stop_after). Progress lines go to `log`
+// (nullptr: silent).
+PreparedBed prepare_box_test(const BoxTestScene& scene, std::ostream* log);
+
+// Steps until the unbalanced-force ratio is below `ratio` (checked every 500 steps,
+// after at least 2,000) or `max_steps` have run.
+StageReport settle(Simulation& sim, const std::string& name, double ratio, long max_steps,
+                   std::ostream* log);
+
+// Height of the bed's top surface over x in [x0, x1]: the highest ball top, m.
+double bed_top(const Simulation& sim, double x0, double x1);
+
+}  // namespace ballast

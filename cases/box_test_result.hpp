@@ -1,0 +1,62 @@
+// Everything a box-test run measures (Lu & McDowell 2007, section 3.3), in SI units
+// (angles in degrees, as the paper's figures). Written to HDF5 by study/.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cases/box_test_prepare.hpp"
+#include "engine/diagnostics.hpp"
+
+namespace ballast {
+
+// Contacts at one instant (Figs 11-12) and the force network behind Figs 10-12.
+struct ContactSnapshot {
+  ContactStats stats;
+  // Ball–ball contacts touching now: the two ball centres and |F|, for drawing.
+  std::vector<Vec3> from, to;
+  std::vector<double> force;  // N
+};
+
+struct RotationStats {
+  double mean_deg = 0.0, max_deg = 0.0;
+};
+
+struct BoxTestResult {
+  std::string scene_name;
+  std::vector<StageReport> stages;
+  long bodies = 0, balls = 0;
+  double dt = 0.0;           // s, during loading
+  double dt_critical = 0.0;  // s
+  double wall_seconds = 0.0;
+  bool loaded = false;  // false when the scene stopped after preparation or compaction
+
+  // Porosity before loading: the paper's 5 mm grid in the column under the sleeper,
+  // and PFC measurement spheres on the column's axis (spheres only: the balls of a
+  // clump overlap, and a measurement sphere would count the overlaps twice).
+  double porosity_grid = 0.0;
+  std::vector<double> sphere_heights, porosity_spheres;  // m, -
+  double bed_height = 0.0;  // m, top of the bed under the sleeper
+
+  ContactSnapshot before, at_peak, after;
+  RotationStats rotation_loading, rotation_unloading, rotation_cycle;
+  double max_displacement_peak = 0.0, max_displacement_after = 0.0;  // m
+
+  // Sleeper: settlement (downward positive) from the start of the cycle, m.
+  double settlement_peak = 0.0, permanent_settlement = 0.0, resilient_settlement = 0.0;
+  double max_force_error = 0.0, rms_force_error = 0.0;  // N, achieved − target
+
+  // Load-deformation series (Fig 18).
+  std::vector<double> time, target_force, sleeper_force, settlement;
+
+  // Per body: positions at the start of loading, at peak load and after the cycle;
+  // accumulated rotations (deg) during loading, unloading and the whole cycle;
+  // template (shape) index.
+  std::vector<Vec3> position_start, position_peak, position_end;
+  std::vector<double> rotation_deg_loading, rotation_deg_unloading, rotation_deg_cycle;
+  std::vector<long> shape_index;
+
+  EnergyBudget energy;
+};
+
+}  // namespace ballast

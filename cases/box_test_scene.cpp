@@ -1,0 +1,152 @@
+#include "cases/box_test_scene.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cases/clump_presets.hpp"
+#include "cases/json_fields.hpp"
+
+namespace ballast {
+
+namespace {
+
+const auto positive = [](double v) { return v > 0.0; };
+const auto fraction = [](double v) { return v >= 0.0 && v <= 1.0; };
+
+void read_particles(const nlohmann::json& j, BoxTestScene& s) {
+  JsonFields f(j, "/particles");
+  const std::vector<std::string> presets = available_clump_presets();
+  std::string names = "\"spheres\"";
+  for (const std::string& p : presets) names += ", \"" + p + "\"";
+  f.text("shape", s.shape, names, [&](const std::string& v) {
+    return v == "spheres" || std::find(presets.begin(), presets.end(), v) != presets.end();
+  });
+  long count = s.count, seed = static_cast<long>(s.seed);
+  f.integer("count", count, ">= 1", [](long v) { return v >= 1; });
+  f.integer("seed", seed, ">= 0", [](long v) { return v >= 0; });
+  s.count = count;
+  s.seed = static_cast<std::uint64_t>(seed);
+  f.number("diameter", s.diameter, "> 0 m", positive);
+  std::string mass = mass_mode_name(s.mass_mode);
+  f.text("mass_mode", mass, "\"sum\", \"paper\" or \"uniform\"",
+         [](const std::string& v) { return v == "sum" || v == "paper" || v == "uniform"; });
+  s.mass_mode = parse_mass_mode(mass);
+  f.number("mass_accuracy", s.mass_accuracy, "in [1e-5, 0.1]",
+           [](double v) { return v >= 1e-5 && v <= 0.1; });
+  const nlohmann::json& clump = f.object("clump");
+  f.finish();
+  if (s.shape == "spheres") {
+    if (!clump.empty()) throw SetupError("invalid /particles/clump for shape \"spheres\" (allowed: "
+                                         "only with a clump preset as shape)");
+    s.clumps.reset();
+    return;
+  }
+  ClumpParams p = load_clump_preset(s.shape).params;
+  JsonFields c(clump, "/particles/clump");
+  const auto whole = [](long v) { return v >= 0; };
+  long directions = p.directions, balls = p.balls_per_direction, edges = p.edge_balls;
+  c.integer("directions", directions, "6 or 14", [](long v) { return v == 6 || v == 14; });
+  c.number("p", p.p, "in [0, 1]", fraction);
+  c.integer("balls_per_direction", balls, ">= 0", whole);
+  c.number("c", p.c, "in [0, 1)", [](double v) { return v >= 0.0 && v < 1.0; });
+  c.number("d3", p.d3, ">= 0", [](double v) { return v >= 0.0; });
+  c.integer("edge_balls", edges, ">= 0", whole);
+  c.number("virtual_sphere_factor", p.virtual_sphere_factor, "> 0", positive);
+  std::string adjacency = adjacency_name(p.adjacency);
+  c.text("adjacency", adjacency, "\"hull\" or \"face_to_diagonal\"", [](const std::string& v) {
+    return v == "hull" || v == "face_to_diagonal";
+  });
+  c.finish();
+  p.directions = static_cast<int>(directions);
+  p.balls_per_direction = static_cast<int>(balls);
+  p.edge_balls = static_cast<int>(edges);
+  p.adjacency = parse_adjacency(adjacency);
+  p.nominal_diameter = s.diameter;
+  s.clumps = p;
+}
+
+}  // namespace
+
+BoxTestScene parse_box_test_scene(const nlohmann::json& j) {
+  BoxTestScene s;
+  JsonFields top(j, "");
+  top.text("name", s.name, "a non-empty string", [](const std::string& v) { return !v.empty(); });
+  read_particles(top.object("particles"), s);
+
+  JsonFields box(top.object("box"), "/box");
+  box.number("length", s.length, "> 0 m", positive);
+  box.number("width", s.width, "> 0 m", positive);
+  box.number("height", s.height, "> 0 m", positive);
+  box.finish();
+
+  JsonFields m(top.object("materials"), "/materials");
+  m.number("ball_stiffness", s.ball_stiffness, "> 0 N/m", positive);
+  m.number("wall_stiffness", s.wall_stiffness, "> 0 N/m", positive);
+  m.number("base_stiffness", s.base_stiffness, "> 0 N/m", positive);
+  m.number("density", s.density, "> 0 kg/m^3", positive);
+  const auto mu = [](double v) { return v >= 0.0 && v <= 10.0; };
+  m.number("friction_compaction", s.friction_compaction, "in [0, 10]", mu);
+  m.number("friction_loading", s.friction_loading, "in [0, 10]", mu);
+  m.finish();
+
+  JsonFields n(top.object("numerics"), "/numerics");
+  n.number("dt_safety", s.dt_safety, "in (0, 1]", [](double v) { return v > 0.0 && v <= 1.0; });
+  n.number("local_damping", s.local_damping, "in [0, 1)",
+           [](double v) { return v >= 0.0 && v < 1.0; });
+  std::string rotation = rotation_integrator_name(s.rotation);
+  n.text("rotation", rotation, "\"pfc\" or \"full\"",
+         [](const std::string& v) { return v == "pfc" || v == "full"; });
+  s.rotation = parse_rotation_integrator(rotation);
+  n.finish();
+
+  JsonFields p(top.object("preparation"), "/preparation");
+  p.number("initial_porosity", s.initial_porosity, "in [0.3, 0.7]",
+           [](double v) { return v >= 0.3 && v <= 0.7; });
+  p.integer("expansion_steps", s.expansion_steps, ">= 1", [](long v) { return v >= 1; });
+  p.number("gravity_factor", s.gravity_factor, "in [1, 1000]",
+           [](double v) { return v >= 1.0 && v <= 1000.0; });
+  p.number("equilibrium_ratio", s.equilibrium_ratio, "in (0, 0.5]",
+           [](double v) { return v > 0.0 && v <= 0.5; });
+  p.integer("max_stage_steps", s.max_stage_steps, ">= 1000", [](long v) { return v >= 1000; });
+  p.text("stop_after", s.stop_after, "\"\", \"prepare\" or \"compact\"",
+         [](const std::string& v) { return v.empty() || v == "prepare" || v == "compact"; });
+  p.finish();
+
+  JsonFields sl(top.object("sleeper"), "/sleeper");
+  sl.number("length", s.sleeper_length, "> 0 m and < the box length",
+            [&](double v) { return v > 0.0 && v < s.length; });
+  sl.number("height", s.sleeper_height, "> 0 m", positive);
+  sl.number("preload", s.preload, "> 0 N", positive);
+  sl.number("peak_load", s.peak_load, "> preload", [&](double v) { return v > s.preload; });
+  sl.number("frequency", s.frequency, "> 0 Hz", positive);
+  sl.integer("cycles", s.cycles, ">= 1", [](long v) { return v >= 1; });
+  sl.number("max_speed", s.sleeper_max_speed, "> 0 m/s", positive);
+  sl.finish();
+
+  JsonFields me(top.object("measurement"), "/measurement");
+  me.number("cube_side", s.cube_side, "> 0 m", positive);
+  me.number("sphere_radius", s.sphere_radius, "> 0 m", positive);
+  me.integer("series_every", s.series_every, ">= 1", [](long v) { return v >= 1; });
+  me.finish();
+  top.finish();
+  return s;
+}
+
+BoxTestScene load_box_test_scene(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw SetupError("cannot read scene file '" + path + "'");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw SetupError("scene file '" + path + "' is not valid JSON: " + e.what());
+  }
+  try {
+    return parse_box_test_scene(j);
+  } catch (const SetupError& e) {
+    throw SetupError("scene file '" + path + "': " + e.what());
+  }
+}
+
+}  // namespace ballast

@@ -1,0 +1,70 @@
+// The paper's box test (Lu & McDowell 2007, section 3) as a scene: every number has
+// the paper's value as default and can be set from a JSON scene file
+// (cases/box_test/*.json; format in docs/BOX_TEST.md).
+#pragma once
+
+#include <nlohmann/json_fwd.hpp>
+#include <optional>
+#include <string>
+
+#include "cases/box_test.hpp"
+#include "engine/clump_generator.hpp"
+#include "engine/clump_mass.hpp"
+#include "engine/rigid_rotation.hpp"
+
+namespace ballast {
+
+struct BoxTestScene {
+  std::string name = "spheres";
+  // particles: "spheres" or a clump preset ("table2/sample1"); clump parameters
+  // given in the file override the preset's.
+  std::string shape = "spheres";
+  std::optional<ClumpParams> clumps;  // resolved from shape (unset for spheres)
+  long count = box_test::kSphereCount;
+  double diameter = box_test::kSphereDiameter;  // m, spheres and clumps' nominal sphere
+  std::uint64_t seed = 1;
+  MassMode mass_mode = MassMode::kPaper;  // eqs 10-15, as the paper
+  double mass_accuracy = 0.005;           // uniform mode only
+  // box, m
+  double length = box_test::kLength, width = box_test::kWidth, height = box_test::kHeight;
+  // materials: kn = ks per entity, combined in series at contacts
+  double ball_stiffness = box_test::kBallStiffness;      // N/m
+  double wall_stiffness = box_test::kBallStiffness;      // N/m, side walls and sleeper
+  double base_stiffness = box_test::kRubberStiffness;    // N/m, rubber base
+  double density = box_test::kDensity;                   // kg/m³
+  double friction_compaction = box_test::kFrictionCompaction;
+  double friction_loading = box_test::kFrictionLoading;
+  // numerics
+  double dt_safety = 0.8;
+  double local_damping = 0.7;
+  RotationIntegrator rotation = RotationIntegrator::kPfc;
+  // preparation (PFC radius expansion, then gravity compaction)
+  double initial_porosity = 0.42;  // of the expanded spheres in their fill region
+  long expansion_steps = 20000;    // steps over which particles grow to full size
+  double gravity_factor = 10.0;    // enhanced gravity during compaction, × 9.81 m/s²
+  double equilibrium_ratio = 5e-3; // unbalanced-force ratio ending a settling stage
+  long max_stage_steps = 400000;   // a stage that has not settled by then stops
+  // sleeper: a rigid block across the full width, centred in x (the paper gives
+  // no size: an assumption, docs/BOX_TEST.md)
+  double sleeper_length = 0.25, sleeper_height = 0.1;  // m
+  double preload = 3e3, peak_load = 40e3;               // N
+  double frequency = 3.0;                               // Hz
+  long cycles = 1;
+  double sleeper_max_speed = 0.5;  // m/s, servo cap
+  // measurements
+  double cube_side = 0.005;        // m, the paper's porosity grid
+  double sphere_radius = 0.05;     // m, measurement spheres
+  long series_every = 200;         // steps between load-displacement samples
+  // "": all stages; "prepare" or "compact" stop early (for studies of settling).
+  std::string stop_after;
+};
+
+// Parses a scene file's JSON. Errors (SetupError) give the JSON path, the value and
+// what is allowed; unknown keys are errors.
+BoxTestScene parse_box_test_scene(const nlohmann::json& j);
+BoxTestScene load_box_test_scene(const std::string& path);
+
+// Volume-equivalent radius of the particles' nominal sphere, m.
+inline double nominal_radius(const BoxTestScene& s) { return 0.5 * s.diameter; }
+
+}  // namespace ballast
