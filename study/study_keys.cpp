@@ -1,0 +1,206 @@
+#include "study/study_keys.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <cstdio>
+#include <limits>
+
+#include "study/study_error.hpp"
+
+namespace ballast {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Readable one-line entries below.
+constexpr KeyRange closed(double lo, double hi) {
+  return {lo, hi, false, false};
+}
+constexpr KeyRange closed_open(double lo, double hi) {
+  return {lo, hi, false, true};
+}
+constexpr KeyRange open_closed(double lo, double hi) {
+  return {lo, hi, true, false};
+}
+constexpr KeyRange at_least(double lo) {
+  return {lo, kInf, false, true};
+}
+constexpr KeyRange above(double lo) {
+  return {lo, kInf, true, true};
+}
+constexpr KeyRange kAny = {-kInf, kInf, true, true};
+
+constexpr StudyKey integer(std::string_view name, KeyRange range, std::string_view group,
+                           std::string_view description) {
+  return {name, KeyKind::kInteger, range, "", group, "", description};
+}
+constexpr StudyKey number(std::string_view name, KeyRange range, std::string_view group,
+                          std::string_view description, std::string_view allowed = "") {
+  return {name, KeyKind::kNumber, range, "", group, allowed, description};
+}
+constexpr StudyKey text(std::string_view name, std::string_view choices, std::string_view group,
+                        std::string_view description) {
+  return {name, KeyKind::kText, kAny, choices, group, "", description};
+}
+
+// The registry. Clump parameters (group "clump") mean what they mean in ClumpParams
+// (engine/clump_generator.hpp) and are checked here against the same ranges as
+// validate_clump_params, so that a bad value is reported at its place in the file
+// rather than later, in the middle of a run.
+constexpr StudyKey kStudyKeys[] = {
+    {"shape", KeyKind::kShape, kAny, "", "shape", "",
+     "\"spheres\", or a clump preset whose fields the clump parameters below override"},
+    {"directions", KeyKind::kInteger, closed(6, 14), "6|14", "clump", "",
+     "candidate directions: 6 cube-face normals, 14 with the space diagonals"},
+    number("p", closed(0, 1), "clump", "probability that a candidate direction is used"),
+    number("n", closed(0, 14), "clump",
+           "expected number of used directions, p = n / directions (exclusive with p)",
+           "a number in [0, directions]"),
+    integer("balls_per_direction", at_least(0), "clump", "balls grown along a used direction"),
+    number("c", closed_open(0, 1), "clump", "largest radius reduction D4, fraction of R"),
+    number("d3", at_least(0), "clump", "clump extension D3 (eq 8), fraction of R"),
+    integer("edge_balls", at_least(0), "clump", "balls on each edge between adjacent directions"),
+    number("virtual_sphere_factor", above(0), "clump", "Rv / (nominal diameter / 2)"),
+    text("adjacency", "hull|face_to_diagonal", "clump",
+         "direction pairs joined by edge balls (docs/CLUMPS.md)"),
+    number("dt_safety", open_closed(0, 1), "numerics", "timestep = dt_safety x critical"),
+    text("rotation", "pfc|full", "numerics",
+         "clump rotation: gyroscopic term dropped as PFC3D 3.x does (eq 17, [W] = 0) or kept"),
+    text("mass_mode", "sum|paper|uniform", "numerics", "clump mass properties (docs/CLUMPS.md)"),
+    number("local_damping", closed_open(0, 1), "numerics", "PFC local damping coefficient"),
+    number("gravity_factor", at_least(1), "loading", "enhanced gravity while compacting, x g"),
+    integer("cycles", at_least(1), "loading", "load cycles of the sleeper"),
+};
+
+std::string format_bound(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+std::vector<std::string> split_choices(std::string_view choices) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= choices.size()) {
+    const std::size_t bar = std::min(choices.find('|', start), choices.size());
+    out.emplace_back(choices.substr(start, bar - start));
+    start = bar + 1;
+  }
+  return out;
+}
+
+// "a", "a or b", "a, b or c".
+std::string either(const std::vector<std::string>& items) {
+  std::string s;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i > 0) s += i + 1 == items.size() ? " or " : ", ";
+    s += items[i];
+  }
+  return s;
+}
+
+std::string range_text(const KeyRange& r) {
+  if (r.hi == kInf) return (r.lo_open ? "> " : ">= ") + format_bound(r.lo);
+  return std::string(r.lo_open ? "(" : "[") + format_bound(r.lo) + ", " + format_bound(r.hi) +
+         (r.hi_open ? ")" : "]");
+}
+
+bool in_range(const KeyRange& r, double x) {
+  const bool lo_ok = r.lo_open ? x > r.lo : x >= r.lo;
+  const bool hi_ok = r.hi_open ? x < r.hi : x <= r.hi;
+  return lo_ok && hi_ok;
+}
+
+}  // namespace
+
+std::span<const StudyKey> study_keys() {
+  return kStudyKeys;
+}
+
+const StudyKey* find_study_key(std::string_view name) {
+  for (const StudyKey& k : kStudyKeys) {
+    if (k.name == name) return &k;
+  }
+  return nullptr;
+}
+
+std::string study_key_names() {
+  std::string s;
+  for (const StudyKey& k : kStudyKeys) s += (s.empty() ? "" : ", ") + std::string(k.name);
+  return s;
+}
+
+std::string allowed_values(const StudyKey& key, const std::vector<std::string>& presets) {
+  if (!key.allowed.empty()) return std::string(key.allowed);
+  switch (key.kind) {
+    case KeyKind::kInteger:
+      if (!key.choices.empty()) return either(split_choices(key.choices));
+      return "an integer " + range_text(key.range);
+    case KeyKind::kNumber:
+      return "a number " + std::string(key.range.hi == kInf ? "" : "in ") + range_text(key.range);
+    case KeyKind::kText: {
+      std::vector<std::string> quoted;
+      for (const std::string& c : split_choices(key.choices)) quoted.push_back('"' + c + '"');
+      return either(quoted);
+    }
+    case KeyKind::kShape: {
+      std::string list;
+      for (const std::string& p : presets) list += (list.empty() ? "" : ", ") + p;
+      return "\"spheres\" or a clump preset: " + (list.empty() ? "(none found)" : list);
+    }
+  }
+  return "";
+}
+
+nlohmann::json check_study_value(const StudyKey& key, const nlohmann::ordered_json& value,
+                                 const std::string& origin, const std::string& path,
+                                 const std::vector<std::string>& presets) {
+  const std::string shown = std::string(key.name) + " = " + value.dump();
+  auto reject = [&](const std::string& why) -> void {
+    throw StudyError(origin, path, shown + " " + why, allowed_values(key, presets));
+  };
+  switch (key.kind) {
+    case KeyKind::kInteger: {
+      if (!value.is_number_integer()) reject("is not an integer");
+      // Unsigned values above INT64_MAX and anything beyond 32 bits: no parameter of a
+      // box test needs them, and ClumpParams holds ints.
+      if (value.is_number_unsigned() && value.get<std::uint64_t>() > INT_MAX) {
+        reject("does not fit in a 32-bit integer");
+      }
+      const std::int64_t v = value.get<std::int64_t>();
+      if (v < INT_MIN || v > INT_MAX) reject("does not fit in a 32-bit integer");
+      if (!key.choices.empty()) {
+        const std::vector<std::string> c = split_choices(key.choices);
+        if (std::find(c.begin(), c.end(), std::to_string(v)) == c.end()) reject("is not allowed");
+      }
+      if (!in_range(key.range, static_cast<double>(v))) reject("is out of range");
+      return v;
+    }
+    case KeyKind::kNumber: {
+      if (!value.is_number()) reject("is not a number");
+      const double v = value.get<double>();
+      if (!in_range(key.range, v)) reject("is out of range");
+      return v;
+    }
+    case KeyKind::kText: {
+      if (!value.is_string()) reject("is not a string");
+      const std::vector<std::string> c = split_choices(key.choices);
+      if (std::find(c.begin(), c.end(), value.get<std::string>()) == c.end()) {
+        reject("is not a known value");
+      }
+      return value.get<std::string>();
+    }
+    case KeyKind::kShape: {
+      if (!value.is_string()) reject("is not a string");
+      const std::string s = value.get<std::string>();
+      if (s != "spheres" && std::find(presets.begin(), presets.end(), s) == presets.end()) {
+        reject("is not \"spheres\" or a known preset");
+      }
+      return s;
+    }
+  }
+  reject("has an unknown kind");
+  return {};
+}
+
+}  // namespace ballast
