@@ -46,22 +46,37 @@ SimulationSettings settings_for(const BoxTestScene& s, double bound) {
   return st;
 }
 
-// The box's walls; the lid (last) closes the fill region during stage 1.
-void add_walls(Simulation& sim, const BoxTestScene& s, double lid_height, double mu) {
+// The box's walls, with a lid (the last wall) at `lid` m while particles grow.
+void add_walls(Simulation& sim, const BoxTestScene& s, double lid, double mu) {
   const Material sides{s.wall_stiffness, s.wall_stiffness, mu};
   const Material base{s.base_stiffness, s.base_stiffness, mu};
-  for (const Wall& w : box_container(Vec3::Zero(), Vec3(s.length, s.width, lid_height), sides,
-                                     base, /*open_top=*/false))
+  for (const Wall& w : box_container(Vec3::Zero(), Vec3(s.length, s.width, lid), sides, base,
+                                     /*open_top=*/false))
     sim.add_wall(w);
 }
 
-// Grows every particle from `from` to full size over the scene's expansion steps.
-StageReport grow(Simulation& sim, const std::string& name, double from, long steps,
+// Growing particles gain speed (a chain of n touching balls spreads at n times the
+// growth rate), so growth happens weightless in a closed box with inelastic
+// contacts (dashpots, β = 0.5), at a loose porosity where nothing jams, and the
+// gas of particles is cooled before the lid goes and gravity comes.
+constexpr double kGrowthDampingRatio = 0.5;
+
+void lift_lid(Simulation& sim, double by) {
+  sim.move_wall(static_cast<Index>(sim.walls().size()) - 1, Vec3(0, 0, by));
+  sim.set_damping_ratio(0.0);
+}
+
+// Grows every particle from `from` to full size, the largest ball's radius growing at
+// `speed` m/s.
+StageReport grow(Simulation& sim, const std::string& name, double from, double speed,
                  std::ostream* log) {
   const auto start = std::chrono::steady_clock::now();
   const double t0 = sim.time();
+  double largest = 0.0;
+  for (double r : sim.balls().radius) largest = std::max(largest, r);
   sim.set_size_scale(from);
   sim.prepare();
+  const long steps = std::max(1L, std::lround((1.0 - from) * largest / (speed * sim.dt())));
   for (long k = 1; k <= steps; ++k) {
     sim.set_size_scale(from + (1.0 - from) * double(k) / double(steps));
     sim.step();
@@ -80,7 +95,16 @@ StageReport settle(Simulation& sim, const std::string& name, double ratio, long 
   StageReport r{name};
   for (r.steps = 1; r.steps <= max_steps; ++r.steps) {
     sim.step();
-    if (r.steps >= 2000 && r.steps % 500 == 0 && sim.unbalanced_force_ratio() < ratio) {
+    if (r.steps < 2000 || r.steps % 500 != 0) continue;
+    // Weightless: at rest when the mean kinetic energy per body is below 1e-9 J
+    // (a 36 mm ballast sphere at 0.2 mm/s). Under gravity: the unbalanced-force
+    // ratio, and a bed without contacts is falling, not balanced.
+    const bool weightless = sim.settings().gravity.isZero(0.0);
+    const bool rest = weightless
+                          ? sim.energy().kinetic() < 1e-9 * double(sim.bodies().size())
+                          : sim.unbalanced_force_ratio() < ratio &&
+                                2 * sim.contacts().ball_contacts >= sim.bodies().size();
+    if (rest) {
       r.settled = true;
       break;
     }
@@ -113,10 +137,13 @@ PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
                     std::to_string(fill) + " m of " + std::to_string(s.height) + " m)");
   // Random addition stalls near a volume fraction of 0.38: generate at a radius
   // giving 0.3 at most.
-  const double shrink = std::min(0.9, std::cbrt(0.3 / (1.0 - s.initial_porosity)));
+  double shrink = std::min(0.9, std::cbrt(0.3 / (1.0 - s.initial_porosity)));
+  const auto rsa_fraction = [&](double k) {
+    return s.count * sphere_volume * k * k * k / (area * std::max(fill - 2.0 * k * r, k * r));
+  };
+  while (rsa_fraction(shrink) > 0.3) shrink *= 0.98;  // thin fill regions lose 2r to walls
   const double rs = shrink * r;
-  const double fraction = s.count * sphere_volume * shrink * shrink * shrink /
-                          (area * std::max(fill - 2.0 * rs, rs));
+  const double fraction = rsa_fraction(shrink);
   const std::vector<Vec3> centres =
       random_loose_packing(static_cast<int>(s.count), rs, Vec3::Zero(),
                            Vec3(s.length, s.width, fill), fraction, s.seed);
@@ -127,11 +154,13 @@ PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
 
   PreparedBed out{Simulation(settings_for(s, r)), {}, 0.0};
   {
+    // Frictionless while growing; friction comes with compaction.
     Simulation& sim = out.sim;
-    const Index mat = sim.add_material({s.ball_stiffness, s.ball_stiffness, s.friction_compaction});
-    add_walls(sim, s, fill, s.friction_compaction);
+    sim.set_damping_ratio(kGrowthDampingRatio);
+    const Index mat = sim.add_material({s.ball_stiffness, s.ball_stiffness, 0.0});
+    add_walls(sim, s, fill, 0.0);
     for (const Vec3& p : centres) sim.add_sphere(p, r, s.density, mat);
-    out.stages.push_back(grow(sim, "expand", shrink, s.expansion_steps, log));
+    out.stages.push_back(grow(sim, "expand", shrink, s.expansion_speed, log));
     out.stages.push_back(settle(sim, "cycle", s.equilibrium_ratio, s.max_stage_steps, log));
     out.dt_spheres = sim.dt();
   }
@@ -145,8 +174,9 @@ PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
         generate_clump_templates(p, mass, static_cast<std::size_t>(s.count), s.seed);
     const double bound = r * p.virtual_sphere_factor;
     Simulation sim(settings_for(s, bound));
-    const Index mat = sim.add_material({s.ball_stiffness, s.ball_stiffness, s.friction_compaction});
-    add_walls(sim, s, 2.0 * s.height, s.friction_compaction);
+    const Index mat = sim.add_material({s.ball_stiffness, s.ball_stiffness, 0.0});
+    add_walls(sim, s, fill, 0.0);
+    sim.set_damping_ratio(kGrowthDampingRatio);
     std::mt19937_64 rng(s.seed ^ 0x5851f42d4c957f2dull);
     long balls = 0;
     for (Index k = 0; k < out.sim.bodies().size(); ++k) {
@@ -161,14 +191,13 @@ PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
       *log << "stage 2: " << s.count << " clumps of " << s.shape << " (" << balls
            << " balls, mass mode " << mass_mode_name(s.mass_mode) << ", rotation "
            << rotation_integrator_name(s.rotation) << ") replace the spheres\n";
-    sim.set_gravity(Vec3(0, 0, -kG));
-    out.stages.push_back(grow(sim, "clumps", 1.0 / p.virtual_sphere_factor, s.expansion_steps, log));
+    out.stages.push_back(grow(sim, "clumps", 1.0 / p.virtual_sphere_factor,
+                                s.expansion_speed, log));
     out.stages.push_back(settle(sim, "relax", s.equilibrium_ratio, s.max_stage_steps, log));
     out.sim = std::move(sim);
-  } else {
-    // The lid goes: move it far above the bed.
-    out.sim.move_wall(static_cast<Index>(out.sim.walls().size()) - 1, Vec3(0, 0, s.height));
   }
+  lift_lid(out.sim, s.height);
+  out.sim.set_all_friction(s.friction_compaction);
   if (s.stop_after == "prepare") return out;
 
   // Stage 3: compaction.

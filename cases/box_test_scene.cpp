@@ -103,7 +103,8 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& j) {
   JsonFields p(top.object("preparation"), "/preparation");
   p.number("initial_porosity", s.initial_porosity, "in [0.3, 0.7]",
            [](double v) { return v >= 0.3 && v <= 0.7; });
-  p.integer("expansion_steps", s.expansion_steps, ">= 1", [](long v) { return v >= 1; });
+  p.number("expansion_speed", s.expansion_speed, "in (0, 1] m/s",
+           [](double v) { return v > 0.0 && v <= 1.0; });
   p.number("gravity_factor", s.gravity_factor, "in [1, 1000]",
            [](double v) { return v >= 1.0 && v <= 1000.0; });
   p.number("equilibrium_ratio", s.equilibrium_ratio, "in (0, 0.5]",

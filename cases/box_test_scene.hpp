@@ -39,8 +39,9 @@ struct BoxTestScene {
   double local_damping = 0.7;
   RotationIntegrator rotation = RotationIntegrator::kPfc;
   // preparation (PFC radius expansion, then gravity compaction)
-  double initial_porosity = 0.42;  // of the expanded spheres in their fill region
-  long expansion_steps = 20000;    // steps over which particles grow to full size
+  double initial_porosity = 0.5;   // of the grown spheres in their fill region (loose:
+                                   // denser jams while growing and springs apart)
+  double expansion_speed = 0.05;   // m/s at which ball radii grow (slow enough not to fling)
   double gravity_factor = 10.0;    // enhanced gravity during compaction, × 9.81 m/s²
   double equilibrium_ratio = 5e-3; // unbalanced-force ratio ending a settling stage
   long max_stage_steps = 400000;   // a stage that has not settled by then stops

@@ -71,11 +71,11 @@ class Simulation {
   void set_wall_friction(Index wall, double mu);
   void set_all_friction(double mu);  // every material and wall: the paper's 0.3 → 0.5 switch
   void set_wall_velocity(Index wall, const Vec3& v);
+  // Moves a wall at once by `delta`, m (lifting the lid off a prepared sample). No
+  // work is booked: move a wall only when the contacts it opens carry no load.
+  void move_wall(Index wall, const Vec3& delta);
   // Replaces a servo's target force history, N as a function of time, s.
   void set_servo_target(Index servo, std::function<double(double)> target);
-  // Moves a wall at once by `delta`, m (e.g. lifting the lid off a prepared sample).
-  // No work is booked: move walls only where the contacts they open do not matter.
-  void move_wall(Index wall, const Vec3& delta);
   void set_body_velocity(Index body, const Vec3& v);
   void set_body_angular_velocity(Index body, const Vec3& w);
   // Displacements and accumulated rotations are measured from now on (the box test

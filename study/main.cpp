@@ -6,6 +6,8 @@
 
 #include "study/cmd_clump.hpp"
 #include "study/cmd_demo.hpp"
+#include "study/cmd_run.hpp"
+#include "engine/errors.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"Ballast: DEM box tests of railway ballast (Lu & McDowell 2007)"};
@@ -13,10 +15,15 @@ int main(int argc, char** argv) {
   // subcommands
   ballast::register_demo_command(app);
   ballast::register_clump_command(app);
+  ballast::register_run_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const ballast::SetupError& e) {
+    // Bad input: nothing has run.
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;

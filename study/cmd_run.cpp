@@ -1,0 +1,91 @@
+#include "study/cmd_run.hpp"
+
+#include <omp.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cases/box_test_load.hpp"
+#include "engine/errors.hpp"
+#include "study/run_archive.hpp"
+#include "study/run_summary.hpp"
+#include "study/run_vtk.hpp"
+
+namespace ballast {
+
+namespace {
+
+struct RunOptions {
+  std::string scene;
+  std::string output;
+  std::string vtk_dir;
+  std::vector<std::string> overrides;  // "/numerics/rotation=full"
+  int threads = 0;
+  bool json = false;
+};
+
+// "/a/b=value": value is parsed as JSON, or taken as a string if it is not JSON.
+void apply_override(nlohmann::json& j, const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || text.empty() || text[0] != '/')
+    throw SetupError("invalid --set '" + text + "' (allowed: /json/pointer=value, e.g. "
+                     "/numerics/rotation=full)");
+  nlohmann::json value;
+  try {
+    value = nlohmann::json::parse(text.substr(eq + 1));
+  } catch (const nlohmann::json::parse_error&) {
+    value = text.substr(eq + 1);
+  }
+  j[nlohmann::json::json_pointer(text.substr(0, eq))] = value;
+}
+
+void run(const RunOptions& o) {
+  if (o.threads > 0) omp_set_num_threads(o.threads);
+  std::ifstream in(o.scene);
+  if (!in) throw SetupError("cannot read scene file '" + o.scene + "'");
+  std::ostringstream text;
+  text << in.rdbuf();
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text.str());
+  } catch (const nlohmann::json::parse_error& e) {
+    throw SetupError("scene file '" + o.scene + "' is not valid JSON: " + e.what());
+  }
+  for (const std::string& s : o.overrides) apply_override(j, s);
+  BoxTestScene scene;
+  try {
+    scene = parse_box_test_scene(j);
+  } catch (const SetupError& e) {
+    throw SetupError("scene file '" + o.scene + "': " + e.what());
+  }
+  std::ostream* log = o.json ? &std::cerr : &std::cout;
+  *log << "box test '" << scene.name << "' on " << omp_get_max_threads() << " thread(s)\n";
+  const BoxTestResult r = run_box_test(scene, log);
+  if (!o.output.empty()) write_run_file(o.output, j.dump(2), r);
+  if (!o.vtk_dir.empty()) write_run_vtk(o.vtk_dir, r);
+  if (o.json)
+    std::cout << run_summary_json(r).dump(2) << "\n";
+  else
+    print_run_summary(std::cout, r);
+}
+
+}  // namespace
+
+void register_run_command(CLI::App& app) {
+  auto o = std::make_shared<RunOptions>();
+  CLI::App* cmd = app.add_subcommand("run", "Run one box test from a scene file");
+  cmd->add_option("scene", o->scene, "scene file (cases/box_test/*.json)")->required();
+  cmd->add_option("-o,--output", o->output, "write the run to this HDF5 file");
+  cmd->add_option("--vtk", o->vtk_dir, "write ParaView files into this directory");
+  cmd->add_option("--set", o->overrides, "override a scene value: /json/pointer=value");
+  cmd->add_option("--threads", o->threads, "OpenMP threads (0: OMP_NUM_THREADS or all cores)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--json", o->json, "print the summary as JSON (progress goes to stderr)");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace ballast

@@ -1,0 +1,141 @@
+#include "study/run_archive.hpp"
+
+#include <cstdio>
+
+#include "study/hdf5_util.hpp"
+
+namespace ballast {
+
+using namespace h5;
+
+namespace {
+
+std::vector<double> flat(const std::vector<Vec3>& v) {
+  std::vector<double> out;
+  out.reserve(3 * v.size());
+  for (const Vec3& x : v) out.insert(out.end(), {x.x(), x.y(), x.z()});
+  return out;
+}
+
+void vec3_set(hid_t g, const char* name, const std::vector<Vec3>& v, const char* units) {
+  dataset(g, name, {static_cast<hsize_t>(v.size()), 3}, flat(v), units);
+}
+
+void scalar_set(hid_t g, const char* name, const std::vector<double>& v, const char* units) {
+  dataset(g, name, {static_cast<hsize_t>(v.size())}, v, units);
+}
+
+Handle group(hid_t parent, const std::string& name) {
+  return Handle(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                H5Gclose, "create group " + name);
+}
+
+void write_contacts(hid_t parent, const char* name, const ContactSnapshot& c) {
+  Handle g = group(parent, name);
+  number_attribute(g, "ball_contacts", c.stats.ball_contacts);
+  number_attribute(g, "wall_contacts", c.stats.wall_contacts);
+  number_attribute(g, "coordination", c.stats.coordination);
+  number_attribute(g, "max_force", c.stats.max_force);
+  number_attribute(g, "mean_force", c.stats.mean_force);
+  vec3_set(g, "from", c.from, "m");
+  vec3_set(g, "to", c.to, "m");
+  scalar_set(g, "force", c.force, "N");
+}
+
+}  // namespace
+
+void write_box_test_result(hid_t run, const BoxTestResult& r) {
+  string_attribute(run, "scene", r.scene_name);
+  number_attribute(run, "bodies", r.bodies);
+  number_attribute(run, "balls", r.balls);
+  number_attribute(run, "dt", r.dt);
+  number_attribute(run, "dt_critical", r.dt_critical);
+  number_attribute(run, "wall_seconds", r.wall_seconds);
+  number_attribute(run, "loaded", static_cast<long>(r.loaded));
+  number_attribute(run, "porosity_grid", r.porosity_grid);
+  number_attribute(run, "bed_height", r.bed_height);
+  number_attribute(run, "settlement_peak", r.settlement_peak);
+  number_attribute(run, "permanent_settlement", r.permanent_settlement);
+  number_attribute(run, "resilient_settlement", r.resilient_settlement);
+  number_attribute(run, "max_force_error", r.max_force_error);
+  number_attribute(run, "rms_force_error", r.rms_force_error);
+  number_attribute(run, "max_displacement_peak", r.max_displacement_peak);
+  number_attribute(run, "max_displacement_after", r.max_displacement_after);
+  const std::pair<const char*, RotationStats> rotations[] = {
+      {"loading", r.rotation_loading},
+      {"unloading", r.rotation_unloading},
+      {"cycle", r.rotation_cycle}};
+  for (const auto& [phase, s] : rotations) {
+    number_attribute(run, ("rotation_" + std::string(phase) + "_mean_deg").c_str(), s.mean_deg);
+    number_attribute(run, ("rotation_" + std::string(phase) + "_max_deg").c_str(), s.max_deg);
+  }
+  const EnergyBudget& e = r.energy;
+  number_attribute(run, "energy_kinetic", e.kinetic());
+  number_attribute(run, "energy_elastic", e.elastic);
+  number_attribute(run, "energy_gravity_work", e.gravity_work);
+  number_attribute(run, "energy_wall_work", e.wall_work);
+  number_attribute(run, "energy_friction", e.friction_dissipated);
+  number_attribute(run, "energy_local_damping", e.damping_dissipated);
+  number_attribute(run, "energy_viscous", e.viscous_dissipated);
+  number_attribute(run, "energy_balance", e.balance());
+
+  {
+    Handle stages = group(run, "stages");
+    for (std::size_t k = 0; k < r.stages.size(); ++k) {
+      const StageReport& s = r.stages[k];
+      char name[64];
+      std::snprintf(name, sizeof name, "%02zu_%s", k, s.name.c_str());
+      Handle g = group(stages, name);
+      number_attribute(g, "steps", s.steps);
+      number_attribute(g, "simulated", s.simulated);
+      number_attribute(g, "seconds", s.seconds);
+      number_attribute(g, "unbalanced", s.unbalanced);
+      number_attribute(g, "settled", static_cast<long>(s.settled));
+    }
+  }
+  {
+    Handle contacts = group(run, "contacts");
+    write_contacts(contacts, "before", r.before);
+    if (r.loaded) {
+      write_contacts(contacts, "peak", r.at_peak);
+      write_contacts(contacts, "after", r.after);
+    }
+  }
+  {
+    Handle series = group(run, "series");
+    scalar_set(series, "time", r.time, "s");
+    scalar_set(series, "target_force", r.target_force, "N");
+    scalar_set(series, "sleeper_force", r.sleeper_force, "N");
+    scalar_set(series, "settlement", r.settlement, "m");
+  }
+  {
+    Handle p = group(run, "particles");
+    vec3_set(p, "position_start", r.position_start, "m");
+    vec3_set(p, "position_peak", r.position_peak, "m");
+    vec3_set(p, "position_end", r.position_end, "m");
+    scalar_set(p, "rotation_loading", r.rotation_deg_loading, "deg");
+    scalar_set(p, "rotation_unloading", r.rotation_deg_unloading, "deg");
+    scalar_set(p, "rotation_cycle", r.rotation_deg_cycle, "deg");
+    std::vector<int> shape(r.shape_index.begin(), r.shape_index.end());
+    dataset(p, "shape_index", {static_cast<hsize_t>(shape.size())}, shape, "1");
+  }
+  {
+    Handle p = group(run, "porosity");
+    scalar_set(p, "sphere_heights", r.sphere_heights, "m");
+    scalar_set(p, "sphere_porosity", r.porosity_spheres, "1");
+  }
+}
+
+void write_run_file(const std::string& path, const std::string& scene_json,
+                    const BoxTestResult& r) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+              "create " + path);
+  string_attribute(file, "format", "ballast-run");
+  number_attribute(file, "version", 1L);
+  string_attribute(file, "scene_json", scene_json);
+  Handle run = group(file, "run");
+  write_box_test_result(run, r);
+}
+
+}  // namespace ballast

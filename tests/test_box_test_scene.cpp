@@ -1,0 +1,89 @@
+// Box-test scene files: the paper's numbers are the defaults, the shipped scenes
+// parse, clump parameters override a preset, and every bad value is refused with
+// its JSON path, the value and what is allowed.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cases/box_test_scene.hpp"
+#include "engine/errors.hpp"
+
+using namespace ballast;
+using nlohmann::json;
+
+namespace {
+
+std::string error_of(const json& j) {
+  try {
+    parse_box_test_scene(j);
+  } catch (const SetupError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+}  // namespace
+
+TEST(BoxTestScene, DefaultsAreThePapers) {
+  const BoxTestScene s = parse_box_test_scene(json::object());
+  EXPECT_EQ(s.count, 1936);
+  EXPECT_DOUBLE_EQ(s.diameter, 0.03625);
+  EXPECT_DOUBLE_EQ(s.length, 0.7);
+  EXPECT_DOUBLE_EQ(s.width, 0.3);
+  EXPECT_DOUBLE_EQ(s.height, 0.45);
+  EXPECT_DOUBLE_EQ(s.ball_stiffness, 5.08e9);
+  EXPECT_DOUBLE_EQ(s.base_stiffness, 2.54e6);
+  EXPECT_DOUBLE_EQ(s.density, 2600.0);
+  EXPECT_DOUBLE_EQ(s.friction_compaction, 0.3);
+  EXPECT_DOUBLE_EQ(s.friction_loading, 0.5);
+  EXPECT_DOUBLE_EQ(s.local_damping, 0.7);
+  EXPECT_DOUBLE_EQ(s.preload, 3e3);
+  EXPECT_DOUBLE_EQ(s.peak_load, 40e3);
+  EXPECT_DOUBLE_EQ(s.frequency, 3.0);
+  EXPECT_FALSE(s.clumps.has_value());
+}
+
+TEST(BoxTestScene, ShippedScenesParse) {
+  const std::string dir = std::string(BALLAST_CASES_DIR) + "/box_test/";
+  EXPECT_FALSE(load_box_test_scene(dir + "spheres.json").clumps.has_value());
+  const BoxTestScene s1 = load_box_test_scene(dir + "sample1.json");
+  ASSERT_TRUE(s1.clumps.has_value());
+  EXPECT_DOUBLE_EQ(s1.clumps->virtual_sphere_factor, 1.26);
+  const BoxTestScene s2 = load_box_test_scene(dir + "sample2.json");
+  ASSERT_TRUE(s2.clumps.has_value());
+  EXPECT_EQ(s2.clumps->directions, 14);
+  EXPECT_DOUBLE_EQ(s2.clumps->virtual_sphere_factor, 1.31);
+  EXPECT_LT(load_box_test_scene(dir + "smoke.json").count, 500);
+}
+
+TEST(BoxTestScene, ClumpParametersOverrideThePreset) {
+  const json j = {{"particles", {{"shape", "table2/sample1"}, {"clump", {{"p", 0.3}}}}}};
+  const BoxTestScene s = parse_box_test_scene(j);
+  ASSERT_TRUE(s.clumps.has_value());
+  EXPECT_DOUBLE_EQ(s.clumps->p, 0.3);
+  EXPECT_EQ(s.clumps->directions, 6);
+}
+
+TEST(BoxTestScene, BadInputNamesPathValueAndAllowed) {
+  const std::string unknown = error_of({{"sleeper", {{"lenght", 0.2}}}});
+  EXPECT_NE(unknown.find("/sleeper/lenght"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("length"), std::string::npos) << unknown;  // lists the known keys
+
+  const std::string type = error_of({{"numerics", {{"dt_safety", "big"}}}});
+  EXPECT_NE(type.find("/numerics/dt_safety"), std::string::npos) << type;
+  EXPECT_NE(type.find("\"big\""), std::string::npos) << type;
+  EXPECT_NE(type.find("(0, 1]"), std::string::npos) << type;
+
+  const std::string range = error_of({{"sleeper", {{"peak_load", 1000.0}}}});
+  EXPECT_NE(range.find("/sleeper/peak_load = 1000"), std::string::npos) << range;
+  EXPECT_NE(range.find("> preload"), std::string::npos) << range;
+
+  const std::string shape = error_of({{"particles", {{"shape", "table9/sample1"}}}});
+  EXPECT_NE(shape.find("table2/sample1"), std::string::npos) << shape;  // lists the presets
+
+  const std::string rotation = error_of({{"numerics", {{"rotation", "euler"}}}});
+  EXPECT_NE(rotation.find("\"pfc\" or \"full\""), std::string::npos) << rotation;
+
+  const std::string sphere_clump = error_of({{"particles", {{"clump", {{"p", 0.5}}}}}});
+  EXPECT_NE(sphere_clump.find("/particles/clump"), std::string::npos) << sphere_clump;
+}
