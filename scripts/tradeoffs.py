@@ -23,8 +23,9 @@ VARIANTS = [
 ]
 
 
-def run(ballast, threads, rotation, mass):
+def run(ballast, threads, rotation, mass, max_stage_steps):
     cmd = [ballast, "run", "cases/box_test/smoke.json", "--json", "--threads", str(threads),
+           "--set", f"/preparation/max_stage_steps={max_stage_steps}",
            "--set", "/particles/shape=table2/sample1",
            "--set", "/preparation/stop_after=compact",
            "--set", f"/numerics/rotation={rotation}",
@@ -37,10 +38,12 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--ballast", default="build/study/ballast")
     p.add_argument("--threads", type=int, default=2)
+    p.add_argument("--max-stage-steps", type=int, default=150000,
+                   help="step limit per settling stage (the smoke scene's own is 150000)")
     a = p.parse_args()
     rows = []
     for rotation, mass in VARIANTS:
-        r = run(a.ballast, a.threads, rotation, mass)
+        r = run(a.ballast, a.threads, rotation, mass, a.max_stage_steps)
         steps = sum(s["steps"] for s in r["stages"])
         seconds = sum(s["seconds"] for s in r["stages"])
         rows.append((rotation, mass, r, steps, seconds))
