@@ -66,7 +66,8 @@ Simulation make_bed(const BedOptions& o) {
   const Material base = o.rubber_base ? box_test::rubber_base(o.friction) : stiff;
   for (const Wall& w : box_container(lo, hi, stiff, base, /*open_top=*/true)) sim.add_wall(w);
   std::vector<Vec3> centres =
-      random_loose_packing(o.count, bound, lo, hi, o.volume_fraction, o.seed);
+      o.centres.empty() ? random_loose_packing(o.count, bound, lo, hi, o.volume_fraction, o.seed)
+                        : o.centres;
   if (!o.spatial_order) {
     // Fisher–Yates with the bed's own seed: the same bed, bodies numbered at random.
     std::mt19937_64 rng(o.seed ^ 0x9e3779b97f4a7c15ull);

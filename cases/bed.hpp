@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <iosfwd>
 #include <optional>
+#include <vector>
 
 #include "cases/box_test.hpp"
 #include "engine/clump_generator.hpp"
@@ -41,6 +42,9 @@ struct BedOptions {
   std::optional<ClumpParams> clumps;
   ClumpMassOptions mass;
   RotationIntegrator rotation = RotationIntegrator::kPfc;
+  // Where the particles go (e.g. the centres of a settled sphere bed); empty: a loose
+  // random cloud of `count` particles.
+  std::vector<Vec3> centres;
 };
 
 // Top of the space the particles may occupy, m (the walls are infinite planes, so

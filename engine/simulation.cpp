@@ -106,6 +106,14 @@ Index Simulation::add_servo(const Servo& s) {
   return static_cast<Index>(servos_.size()) - 1;
 }
 
+void Simulation::set_rotation_integrator(RotationIntegrator r) {
+  if (r == RotationIntegrator::kFull && settings_.rotation != r)
+    for (Index b = 0; b < bodies_.size(); ++b)
+      bodies_.angular_momentum[b] = spin_angular_momentum(
+          bodies_.orientation[b], bodies_.inertia[b], bodies_.angular_velocity[b]);
+  settings_.rotation = r;
+}
+
 void Simulation::set_local_damping(double alpha) {
   require_setup(alpha >= 0.0 && alpha < 1.0, "local damping alpha", alpha, "[0, 1)");
   settings_.local_damping = alpha;

@@ -65,6 +65,9 @@ class Simulation {
 
   // ---- changing conditions during a run ----
   void set_gravity(const Vec3& g) { settings_.gravity = g; }
+  // Clumps' rotation integrator; switching to `full` derives each body's angular
+  // momentum from its current ω.
+  void set_rotation_integrator(RotationIntegrator r);
   void set_local_damping(double alpha);
   void set_damping_ratio(double beta);  // viscous contact damping; dt follows at next build
   void set_material_friction(Index material, double mu);
