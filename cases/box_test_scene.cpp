@@ -105,6 +105,7 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& j) {
            [](double v) { return v >= 0.3 && v <= 0.7; });
   p.number("expansion_speed", s.expansion_speed, "in (0, 1] m/s",
            [](double v) { return v > 0.0 && v <= 1.0; });
+  p.boolean("frictionless_settling", s.frictionless_settling);
   p.number("gravity_factor", s.gravity_factor, "in [1, 1000]",
            [](double v) { return v >= 1.0 && v <= 1000.0; });
   p.number("equilibrium_ratio", s.equilibrium_ratio, "in (0, 0.5]",

@@ -42,6 +42,7 @@ struct BoxTestScene {
   double initial_porosity = 0.5;   // of the grown spheres in their fill region (loose:
                                    // denser jams while growing and springs apart)
   double expansion_speed = 0.05;   // m/s at which ball radii grow (slow enough not to fling)
+  bool frictionless_settling = true;  // settle at 1 g without friction before compaction
   double gravity_factor = 10.0;    // enhanced gravity during compaction, × 9.81 m/s²
   double equilibrium_ratio = 5e-3; // unbalanced-force ratio ending a settling stage
   long max_stage_steps = 400000;   // a stage that has not settled by then stops

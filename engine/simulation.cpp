@@ -183,6 +183,18 @@ void Simulation::set_body_angular_velocity(Index body, const Vec3& w) {
       spin_angular_momentum(bodies_.orientation[body], bodies_.inertia[body], w);
 }
 
+void Simulation::quench() {
+  for (Index b = 0; b < bodies_.size(); ++b) {
+    // Book each body's kinetic energy as damping, so the energy budget still closes.
+    const Vec3 w = bodies_.orientation[b].conjugate() * bodies_.angular_velocity[b];
+    bodies_.damping_dissipated[b] += 0.5 * bodies_.mass[b] * bodies_.velocity[b].squaredNorm() +
+                                     0.5 * w.dot(bodies_.inertia[b].cwiseProduct(w));
+    bodies_.velocity[b].setZero();
+    bodies_.angular_velocity[b].setZero();
+    bodies_.angular_momentum[b].setZero();
+  }
+}
+
 void Simulation::reset_motion_reference() { bodies_.reset_motion_reference(); }
 
 void Simulation::set_size_scale(double scale) {
@@ -400,6 +412,9 @@ void Simulation::step() {
   }
   time_ += dt_;
   ++steps_;
+  // Contacts form between rebuilds too (a bed being squeezed): refresh the
+  // automatic timestep often enough that it never trails them by much.
+  if (!settings_.fixed_dt && steps_ % kTimestepRefreshSteps == 0) update_timestep();
   const double half = 0.5 * skin_;
   const double growth = std::max(0.0, size_scale_ - scale_at_build_) * max_full_radius_;
   needs_rebuild_ = needs_rebuild_ || std::sqrt(r.max_ball_shift2) + growth > half ||

@@ -46,6 +46,9 @@ struct SimulationSettings {
 
 class Simulation {
  public:
+  // Steps between re-estimates of the automatic timestep (besides every rebuild).
+  static constexpr long kTimestepRefreshSteps = 100;
+
   explicit Simulation(const SimulationSettings& settings);
 
   // ---- building the scene (before the first step) ----
@@ -81,6 +84,9 @@ class Simulation {
   void set_servo_target(Index servo, std::function<double(double)> target);
   void set_body_velocity(Index body, const Vec3& v);
   void set_body_angular_velocity(Index body, const Vec3& w);
+  // Every body at rest at once (PFC users' velocity reset after radius expansion);
+  // the kinetic energy removed is booked as damping.
+  void quench();
   // Displacements and accumulated rotations are measured from now on (the box test
   // resets at the start of loading and of unloading).
   void reset_motion_reference();

@@ -41,10 +41,10 @@ TimestepEstimate estimate_critical_timestep(const BallStore& balls, const BodySt
       for (Index e = bc.ball_offset[ball]; e < bc.ball_offset[ball + 1]; ++e) {
         const Index c = bc.ball_entry[e] >> 1;
         const Index other = (bc.ball_entry[e] & 1) ? bc.a[c] : bc.b[c];
-        // Every listed neighbour counts, touching or not: a pair within the skin may
-        // close before the next rebuild (when dt is next estimated), and a bed
-        // squeezed between rebuilds must not outgrow its timestep.
-        const Vec3 n = (px - balls.position[other]).normalized();
+        const Vec3 d = px - balls.position[other];
+        const double reach = r + balls.radius[other];
+        if (d.squaredNorm() >= reach * reach) continue;
+        const Vec3 n = d.normalized();
         const Material& mo = materials[balls.material[other]];
         k.add(series_stiffness(m.kn, mo.kn), series_stiffness(m.ks, mo.ks), (px - x) - r * n, n);
       }
@@ -52,6 +52,7 @@ TimestepEstimate estimate_critical_timestep(const BallStore& balls, const BodySt
         const Index c = wc.ball_entry[e] >> 1;
         const Wall& w = walls[wc.b[c]];
         const WallTouch t = touch_wall(w, px, r);
+        if (t.overlap <= 0.0) continue;
         k.add(series_stiffness(m.kn, w.material.kn), series_stiffness(m.ks, w.material.ks),
               t.point - x, t.normal);
       }
