@@ -87,6 +87,7 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out,
   const double preload = s.preload;
   servo.target_force = [preload](double) { return preload; };
   servo.max_speed = s.sleeper_max_speed;
+  servo.gain = s.sleeper_gain;
   const Index servo_id = sim.add_servo(servo);
   measure_porosity(s, sim, x0, x1, top, out);
   if (log)

@@ -124,6 +124,7 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& j) {
   sl.number("frequency", s.frequency, "> 0 Hz", positive);
   sl.integer("cycles", s.cycles, ">= 1", [](long v) { return v >= 1; });
   sl.number("max_speed", s.sleeper_max_speed, "> 0 m/s", positive);
+  sl.number("gain", s.sleeper_gain, "in (0, 1]", [](double v) { return v > 0.0 && v <= 1.0; });
   sl.finish();
 
   JsonFields me(top.object("measurement"), "/measurement");
