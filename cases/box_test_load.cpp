@@ -94,8 +94,12 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out,
     *log << "stage 4: sleeper " << s.sleeper_length * 1e3 << " mm long on the bed at "
          << top * 1e3 << " mm; grid porosity under it " << out.porosity_grid << "\n";
 
-  // Seat the sleeper at the preload.
+  // Seat the sleeper: down to the bed until it carries the preload, then let the
+  // bed come to equilibrium under it.
   sim.prepare();
+  for (long k = 0; k < s.max_stage_steps && sim.servos()[servo_id].measured_force < 0.95 * preload;
+       ++k)
+    sim.step();
   out.stages.push_back(settle(sim, "preload", s.equilibrium_ratio, s.max_stage_steps, log));
 
   // Cycles: F(t) = (Fmin + Fmax)/2 − (Fmax − Fmin)/2·cos(2πf(t − t0)).

@@ -39,10 +39,15 @@ struct PreparedBed {
 // (nullptr: silent).
 PreparedBed prepare_box_test(const BoxTestScene& scene, std::ostream* log);
 
-// Steps until the unbalanced-force ratio is below `ratio` (checked every 500 steps,
-// after at least 2,000) or `max_steps` have run.
+enum class SettleRule {
+  kRatio,    // unbalanced-force ratio below `ratio`, with contacts
+  kKinetic,  // kinetic energy below 1e-4 of the potential energy above the base
+};
+
+// Steps until the rule holds (checked every 500 steps, after at least 2,000) or
+// `max_steps` have run.
 StageReport settle(Simulation& sim, const std::string& name, double ratio, long max_steps,
-                   std::ostream* log);
+                   std::ostream* log, SettleRule rule = SettleRule::kRatio);
 
 // Height of the bed's top surface over x in [x0, x1]: the highest ball top, m.
 double bed_top(const Simulation& sim, double x0, double x1);
