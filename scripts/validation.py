@@ -50,6 +50,11 @@ def table(name, run):
              "", "| quantity | ours | paper |", "|---|---|---|"]
     lines.append(row("porosity, 5 mm grid under the sleeper", a["porosity_grid"],
                      paper.get("porosity")))
+    spheres = run["porosity/sphere_porosity"][:]
+    if len(spheres):
+        heights = ", ".join(f"{h * 1e3:.0f}" for h in run["porosity/sphere_heights"][:])
+        lines.append(row(f"porosity, measurement spheres on the column axis (mean of z = "
+                         f"{heights} mm)", float(spheres.mean()), paper.get("porosity")))
     stages = [("before loading", "before"), ("at peak load", "peak"), ("after unloading", "after")]
     for k, (label, group) in enumerate(stages):
         if group not in run["contacts"]:
