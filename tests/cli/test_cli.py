@@ -92,36 +92,63 @@ class DemoCommand(unittest.TestCase):
 
 
 class RunCommand(unittest.TestCase):
-    """The smoke-scale box test end to end: preparation, compaction, one cycle."""
+    """The smoke-scale box test end to end (preparation, compaction, one cycle), for
+    spheres and for Table 2 Sample 1 clumps."""
 
-    def test_smoke_box_test_gives_sane_physics_and_an_archive(self):
-        with tempfile.TemporaryDirectory() as tmp:
-            out = os.path.join(tmp, "run.h5")
-            vtk = os.path.join(tmp, "vtk")
-            r = ballast("run", os.path.join(CASES, "box_test", "smoke.json"), "-o", out,
-                        "--vtk", vtk, "--json", "--threads", "1")
-            self.assertEqual(r.returncode, 0, r.stderr)
-            s = json.loads(r.stdout)
-            # A packed granular bed: porosity between very dense and very loose.
-            self.assertGreater(s["porosity_grid"], 0.3)
-            self.assertLess(s["porosity_grid"], 0.5)
-            self.assertTrue(s["loaded"])
-            # The servo follows the 0.75 -> 10 -> 0.75 kN pulse: rms error under 10 %
-            # of the peak (measured 4 % at this scene's 30 Hz).
-            self.assertLess(s["rms_force_error_N"], 1000.0)
-            # Loading moves the sleeper down and pushes particles, by millimetres.
-            self.assertGreater(s["settlement_peak_m"], 1e-5)
-            self.assertLess(s["settlement_peak_m"], 0.02)
-            self.assertGreater(s["max_displacement_peak_m"], 1e-5)
-            self.assertGreater(s["contacts_peak"]["mean_force_N"],
-                               s["contacts_before"]["mean_force_N"])
-            with h5py.File(out, "r") as f:
-                series = f["run/series"]
-                self.assertGreater(len(series["time"]), 10)
-                peak = np.max(series["target_force"][:])
-                self.assertAlmostEqual(peak, 10000.0, delta=100.0)
-                self.assertEqual(f["run/particles/position_start"].shape, (s["bodies"], 3))
-            self.assertTrue(os.path.exists(os.path.join(vtk, "contacts_peak.vtk")))
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.archive = os.path.join(cls.tmp.name, "run.h5")
+        cls.vtk = os.path.join(cls.tmp.name, "vtk")
+        scene = os.path.join(CASES, "box_test", "smoke.json")
+        r = ballast("run", scene, "-o", cls.archive, "--vtk", cls.vtk, "--json",
+                    "--threads", "1")
+        assert r.returncode == 0, r.stderr
+        cls.spheres = json.loads(r.stdout)
+        r = ballast("run", scene, "--set", "/particles/shape=table2/sample1", "--json",
+                    "--threads", "1")
+        assert r.returncode == 0, r.stderr
+        cls.clumps = json.loads(r.stdout)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_smoke_box_test_gives_sane_physics(self):
+        for s in (self.spheres, self.clumps):
+            with self.subTest(balls=s["balls"]):
+                # A packed granular bed: between very dense and very loose.
+                self.assertGreater(s["porosity_grid"], 0.3)
+                self.assertLess(s["porosity_grid"], 0.5)
+                self.assertTrue(s["loaded"])
+                # The servo follows the 0.75 -> 10 -> 0.75 kN pulse: rms error under
+                # 5 % of the peak (measured 73 N for spheres, 14 N for clumps).
+                self.assertLess(s["rms_force_error_N"], 500.0)
+                # Loading moves the sleeper down, by micrometres to millimetres.
+                self.assertGreater(s["settlement_peak_m"], 1e-6)
+                self.assertLess(s["settlement_peak_m"], 0.02)
+                self.assertGreater(s["contacts_peak"]["mean_force_N"],
+                                   s["contacts_before"]["mean_force_N"])
+
+    def test_clumps_rotate_less_than_spheres(self):
+        # The paper's central finding (Figs 13-14): interlocking clumps turn far less
+        # than spheres under the same load. Measured here: 0.06 against 0.44 degrees
+        # mean during loading; asserted with a factor 2 of margin.
+        self.assertLess(self.clumps["rotation_loading"]["mean_deg"],
+                        0.5 * self.spheres["rotation_loading"]["mean_deg"])
+        self.assertLess(self.clumps["max_displacement_peak_m"],
+                        self.spheres["max_displacement_peak_m"])
+
+    def test_archive_holds_the_series_and_particle_fields(self):
+        s = self.spheres
+        with h5py.File(self.archive, "r") as f:
+            series = f["run/series"]
+            self.assertGreater(len(series["time"]), 10)
+            peak = np.max(series["target_force"][:])
+            self.assertAlmostEqual(peak, 10000.0, delta=100.0)
+            self.assertEqual(f["run/particles/position_start"].shape, (s["bodies"], 3))
+            self.assertIn("scene_json", f.attrs)
+        self.assertTrue(os.path.exists(os.path.join(self.vtk, "contacts_peak.vtk")))
 
     def test_bad_scene_value_is_refused_with_exit_code_2_and_no_file(self):
         with tempfile.TemporaryDirectory() as tmp:
