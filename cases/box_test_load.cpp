@@ -22,7 +22,7 @@ ContactSnapshot snapshot_contacts(const Simulation& sim) {
     if (!c.active[k]) continue;
     s.from.push_back(b.position[c.a[k]]);
     s.to.push_back(b.position[c.b[k]]);
-    s.force.push_back(c.force[k].norm());
+    s.force.push_back(c.force(k).norm());
   }
   return s;
 }

@@ -8,14 +8,15 @@
 #include <string_view>
 
 #include "engine/types.hpp"
+#include "engine/v3.hpp"
 
 namespace ballast {
 
 // Everything a law needs about one contact at time t.
 struct ContactState {
   double overlap;  // m, > 0
-  Vec3 normal;     // unit, from b towards a
-  Vec3 vrel;       // m/s, velocity of a minus velocity of b at the contact point (t - dt/2)
+  V3 normal;       // unit, from b towards a
+  V3 vrel;         // m/s, velocity of a minus velocity of b at the contact point (t - dt/2)
   double kn, ks;   // N/m, already combined in series
   double mu;       // friction coefficient
   double cn, cs;   // N·s/m, normal and shear dashpot coefficients (0 when undamped)
@@ -23,7 +24,7 @@ struct ContactState {
 };
 
 struct ContactResult {
-  Vec3 force;           // N, on a
+  V3 force;             // N, on a
   double normal_force;  // N, kn·overlap
   double slip_work;     // J dissipated by Coulomb slip this step
   double viscous_work;  // J dissipated by the dashpots this step
@@ -40,43 +41,50 @@ struct ContactResult {
 // Dashpot force is not clamped: the normal force may briefly turn attractive at the
 // end of a damped impact, which is what gives the closed-form restitution
 // e = exp(−πβ/√(1−β²)). As in PFC, the shear dashpot is off while the contact slides.
-template <bool kFriction>
-inline ContactResult linear_contact(const ContactState& c, Vec3& shear_force) {
+//
+// Always inlined into the force loop, where the state and result then live in
+// registers (GCC otherwise kept it out of line and passed them through memory).
+template <bool kFriction, bool kDamped>
+[[gnu::always_inline]] inline ContactResult linear_contact(const ContactState& c, V3& shear_force) {
   ContactResult r{};
   r.normal_force = c.kn * c.overlap;
-  const double vn = c.vrel.dot(c.normal);
-  Vec3 f = r.normal_force * c.normal;
-  bool sliding = false;
+  const double vn = dot(c.vrel, c.normal);
+  V3 f = r.normal_force * c.normal;
   if constexpr (kFriction) {
-    const double old_mag2 = shear_force.squaredNorm();
+    bool sliding = false;
+    const double old_mag2 = dot(shear_force, shear_force);
     if (old_mag2 > 0.0) {
-      shear_force -= shear_force.dot(c.normal) * c.normal;
-      const double new_mag2 = shear_force.squaredNorm();
-      if (new_mag2 > 0.0) shear_force *= std::sqrt(old_mag2 / new_mag2);
+      shear_force = shear_force - dot(shear_force, c.normal) * c.normal;
+      const double new_mag2 = dot(shear_force, shear_force);
+      if (new_mag2 > 0.0) shear_force = std::sqrt(old_mag2 / new_mag2) * shear_force;
     }
-    const Vec3 vs = c.vrel - vn * c.normal;
-    shear_force -= (c.ks * c.dt) * vs;
+    const V3 vs = c.vrel - vn * c.normal;
+    shear_force = shear_force - (c.ks * c.dt) * vs;
     const double limit = c.mu * r.normal_force;
-    const double mag2 = shear_force.squaredNorm();
+    const double mag2 = dot(shear_force, shear_force);
     if (mag2 > limit * limit) {
       const double mag = std::sqrt(mag2);
       // The spring would have stretched (mag - limit)/ks beyond the slider; that
       // displacement slips against a friction force of `limit`.
       r.slip_work = c.ks > 0.0 ? limit * (mag - limit) / c.ks : 0.0;
-      shear_force *= limit / mag;
+      shear_force = (limit / mag) * shear_force;
       sliding = true;
     }
     f += shear_force;
-    if (c.cs > 0.0 && !sliding) {
-      const Vec3 fd = -c.cs * vs;
-      f += fd;
-      r.viscous_work -= fd.dot(vs) * c.dt;
+    if constexpr (kDamped) {
+      if (c.cs > 0.0 && !sliding) {
+        const V3 fd = (-c.cs) * vs;
+        f += fd;
+        r.viscous_work -= dot(fd, vs) * c.dt;
+      }
     }
   }
-  if (c.cn > 0.0) {
-    const double fdn = -c.cn * vn;
-    f += fdn * c.normal;
-    r.viscous_work -= fdn * vn * c.dt;
+  if constexpr (kDamped) {
+    if (c.cn > 0.0) {
+      const double fdn = -c.cn * vn;
+      f += fdn * c.normal;
+      r.viscous_work -= fdn * vn * c.dt;
+    }
   }
   r.force = f;
   return r;

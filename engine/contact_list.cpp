@@ -21,25 +21,32 @@ void ContactList::rebuild(std::vector<Index>&& new_a, std::vector<Index>&& new_b
   b = std::move(new_b);
   shear_force = std::move(new_shear);
   history_ = keep_history;
-  force.assign(n, Vec3::Zero());
-  point.assign(n, Vec3::Zero());
+  b_wrench.assign(n, Wrench{Vec3::Zero(), Vec3::Zero()});
   normal_force.assign(n, 0.0);
-  slip_work.assign(n, 0.0);
-  viscous_work.assign(n, 0.0);
+  slip_total.assign(n, 0.0);
+  viscous_total.assign(n, 0.0);
   active.assign(n, 0);
 
-  // Per-ball entries by counting sort; entries of a ball come in contact order.
-  ball_offset.assign(n_balls + 1, 0);
-  for (std::size_t c = 0; c < n; ++c) {
-    ++ball_offset[a[c] + 1];
-    if (b_is_ball) ++ball_offset[b[c] + 1];
-  }
-  for (Index i = 0; i < n_balls; ++i) ball_offset[i + 1] += ball_offset[i];
-  ball_entry.resize(ball_offset[n_balls]);
-  std::vector<Index> fill(ball_offset.begin(), ball_offset.end() - 1);
-  for (std::size_t c = 0; c < n; ++c) {
-    ball_entry[fill[a[c]]++] = static_cast<Index>(2 * c);
-    if (b_is_ball) ball_entry[fill[b[c]]++] = static_cast<Index>(2 * c + 1);
+  // Side a: the list is sorted by a, so each ball's contacts are one range.
+  a_first.assign(n_balls + 1, 0);
+  for (std::size_t c = 0; c < n; ++c) ++a_first[a[c] + 1];
+  for (Index i = 0; i < n_balls; ++i) a_first[i + 1] += a_first[i];
+  // Side b, by counting sort: each ball's entries come in contact order.
+  b_first.assign(b_is_ball ? n_balls + 1 : 0, 0);
+  b_contact.clear();
+  if (!b_is_ball) return;
+  for (std::size_t c = 0; c < n; ++c) ++b_first[b[c] + 1];
+  for (Index i = 0; i < n_balls; ++i) b_first[i + 1] += b_first[i];
+  b_contact.resize(n);
+  std::vector<Index> fill(b_first.begin(), b_first.end() - 1);
+  for (std::size_t c = 0; c < n; ++c) b_contact[fill[b[c]]++] = static_cast<Index>(c);
+}
+
+void ContactList::flush_dissipation(std::vector<double>& friction, std::vector<double>& viscous) {
+  for (std::size_t c = 0; c < a.size(); ++c) {
+    friction[a[c]] += slip_total[c];
+    viscous[a[c]] += viscous_total[c];
+    slip_total[c] = viscous_total[c] = 0.0;
   }
 }
 

@@ -5,9 +5,23 @@
 //
 // One type serves both kinds of contact:
 //   ball–ball: a < b are ball indices;     ball–wall: a is the ball, b the wall.
-// Sign conventions: `normal` (implied) points from b to a; `force` is the total
-// force on a (normal + shear + dashpot), N; b receives −force. `point` is where the
-// force acts, so the torque on a's body is (point − x_body) × force.
+// Sign conventions: `normal` (implied) points from b to a; the contact's total
+// force F (normal + shear + dashpot, N) acts on a, and b receives −F.
+//
+// How forces reach bodies without atomics: the force pass runs ball by ball, each
+// ball evaluating the contacts it is side a of (the list is sorted by a, so they
+// are the contiguous range a_first[i] .. a_first[i+1]) and summing their wrenches
+// on a in registers; only the wrench on side b is stored per contact (b_wrench).
+// A body then adds its balls' a-side sums and the b_wrench of the contacts its balls
+// are side b of (b_first/b_contact), always in the same order. Ball–wall lists store
+// −F on the wall in b_wrench (their torque is unused). A contact that is not
+// touching holds a zero b_wrench, so the gather adds every listed contact without
+// testing `active` (a branch it mispredicted often).
+//
+// Energy: the work a contact dissipates (Coulomb slip, dashpots) is summed on the
+// contact while the list lives, and handed to the ball ledger of side a by
+// flush_dissipation() before a rebuild. Sliding is rare in a settled bed, so this
+// costs a store only when something slips, instead of two stores every step.
 //
 // History: the shear force is the only state carried from step to step. It lives in
 // `shear_force` and survives neighbour rebuilds by a merge on the sorted (a, b) keys.
@@ -21,28 +35,40 @@
 
 namespace ballast {
 
-struct ContactList {
-  std::vector<Index> a, b;           // keys, sorted lexicographically
-  std::vector<Vec3> shear_force;     // N on a, history; empty when the scene is frictionless
-  std::vector<Vec3> force;           // N on a
-  std::vector<Vec3> point;           // m
-  std::vector<double> normal_force;  // N, elastic part kn·overlap (what PFC reports)
-  std::vector<double> slip_work;     // J dissipated by Coulomb slip this step
-  std::vector<double> viscous_work;  // J dissipated by the dashpots this step
-  std::vector<std::uint8_t> active;  // 1 while overlapping
+// What a contact exerts on one of its two sides.
+struct Wrench {
+  Vec3 force;   // N
+  Vec3 torque;  // N·m about that side's body's centre of mass
+};
 
-  // Per ball: the contacts it takes part in, as entries 2·contact + side
-  // (side 0: the ball is a and receives +force; side 1: it is b, receives −force).
-  std::vector<Index> ball_offset;  // size n_balls + 1
-  std::vector<Index> ball_entry;
+struct ContactList {
+  std::vector<Index> a, b;            // keys, sorted lexicographically
+  std::vector<Vec3> shear_force;      // N on a, history; empty when the scene is frictionless
+  std::vector<Wrench> b_wrench;       // on side b: −F and its moment about b's centre of mass
+  std::vector<double> normal_force;   // N, elastic part kn·overlap (what PFC reports)
+  std::vector<double> slip_total;     // J dissipated by Coulomb slip since the last rebuild
+  std::vector<double> viscous_total;  // J dissipated by the dashpots since the last rebuild
+  std::vector<std::uint8_t> active;   // 1 while overlapping
+
+  // Per ball i: its contacts as side a are a_first[i] .. a_first[i + 1] (size n_balls + 1).
+  std::vector<Index> a_first;
+  // Per ball i (ball–ball lists only): its contacts as side b are
+  // b_contact[b_first[i] .. b_first[i + 1]], in contact order.
+  std::vector<Index> b_first, b_contact;
 
   Index size() const { return static_cast<Index>(a.size()); }
+  // Total force on a, N (b receives its opposite).
+  Vec3 force(Index c) const { return -b_wrench[c].force; }
 
   // Replaces the candidate set by (new_a, new_b), sorted, and carries the shear force
-  // of every pair present in both the old and new sets. Per-ball lookup is rebuilt
-  // for `n_balls` balls; `b_is_ball` says whether b also gets entries.
+  // of every pair present in both the old and new sets. Per-ball ranges are rebuilt
+  // for `n_balls` balls; `b_is_ball` says whether b is a ball (gets b entries).
   void rebuild(std::vector<Index>&& new_a, std::vector<Index>&& new_b, bool keep_history,
                Index n_balls, bool b_is_ball);
+
+  // Adds each contact's dissipated work to the ledgers of its side-a ball (in
+  // contact order, so the sums do not depend on threads) and zeroes it.
+  void flush_dissipation(std::vector<double>& friction, std::vector<double>& viscous);
 
   // Allocates (zeroed) or frees the shear history when friction is switched on/off.
   void set_history(bool on);

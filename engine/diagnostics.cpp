@@ -30,6 +30,13 @@ EnergyBudget energy_budget(const BallStore& balls, const BodyStore& bodies,
     e.friction_dissipated += balls.friction_dissipated[k];
     e.viscous_dissipated += balls.viscous_dissipated[k];
   }
+  // What the live contacts have dissipated since the last rebuild (not yet flushed
+  // into the ball ledger).
+  for (const ContactList* cl : {&bc, &wc})
+    for (Index c = 0; c < cl->size(); ++c) {
+      e.friction_dissipated += cl->slip_total[c];
+      e.viscous_dissipated += cl->viscous_total[c];
+    }
   for (Index c = 0; c < bc.size(); ++c) {
     if (!bc.active[c]) continue;
     const Material& ma = materials[balls.material[bc.a[c]]];
@@ -57,7 +64,7 @@ ContactStats contact_stats(const BodyStore& bodies, const ContactList& bc, const
     for (Index c = 0; c < cl.size(); ++c) {
       if (!cl.active[c]) continue;
       ++count;
-      const double f = cl.force[c].norm();
+      const double f = cl.force(c).norm();
       sum += f;
       s.max_force = std::max(s.max_force, f);
     }

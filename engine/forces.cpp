@@ -8,160 +8,185 @@ namespace ballast {
 
 namespace {
 
-// A contact whose entities no longer overlap: PFC drops its shear force.
+// A contact whose entities no longer overlap: PFC drops its shear force. Its b-side
+// wrench goes to zero so that the gather may add the contact blindly.
 template <bool kFriction>
-inline void open_contact(ContactList& cl, Index c) {
+[[gnu::always_inline]] inline void open_contact(ContactList& cl, Index c) {
   if (!cl.active[c]) return;
   cl.active[c] = 0;
-  cl.force[c].setZero();
+  cl.b_wrench[c] = Wrench{Vec3::Zero(), Vec3::Zero()};
   cl.normal_force[c] = 0.0;
-  cl.slip_work[c] = cl.viscous_work[c] = 0.0;
   if constexpr (kFriction) cl.shear_force[c].setZero();
 }
 
-inline void store_contact(ContactList& cl, Index c, const ContactResult& r, const Vec3& point) {
+// Bookkeeping every touching contact does: flags, elastic normal force, energy.
+template <bool kDamped>
+[[gnu::always_inline]] inline void record(ContactList& cl, Index c, const ContactResult& r) {
   cl.active[c] = 1;
-  cl.force[c] = r.force;
-  cl.point[c] = point;
   cl.normal_force[c] = r.normal_force;
-  cl.slip_work[c] = r.slip_work;
-  cl.viscous_work[c] = r.viscous_work;
+  // Slip work is zero unless the contact slides, which is rare once a bed settles.
+  if (r.slip_work != 0.0) cl.slip_total[c] += r.slip_work;
+  if constexpr (kDamped) cl.viscous_total[c] += r.viscous_work;
 }
 
-template <bool kFriction>
-void ball_contact_loop(const BallStore& balls, const BodyStore& bodies,
-                       const std::vector<Material>& materials, const ForceSettings& s,
-                       ContactList& cl) {
-  const Index n = cl.size();
-  const bool damped = s.damping_ratio > 0.0;
-  // nowait: the wall loop that follows reads only positions and velocities, which
-  // no contact loop writes. The caller puts one barrier after both loops.
-#pragma omp for schedule(static) nowait
-  for (Index c = 0; c < n; ++c) {
-    const Index i = cl.a[c], j = cl.b[c];
-    const Vec3 d = balls.position[i] - balls.position[j];
-    const double ri = balls.radius[i], rj = balls.radius[j];
-    const double dist2 = d.squaredNorm();
-    const double reach = ri + rj;
-    if (dist2 >= reach * reach) {
-      open_contact<kFriction>(cl, c);
-      continue;
-    }
-    const double dist = std::sqrt(dist2);
-    const Vec3 n = d / dist;  // from j towards i
-    const double overlap = reach - dist;
-    const Vec3 p = balls.position[j] + (rj - 0.5 * overlap) * n;
-    const Index bi = balls.body[i], bj = balls.body[j];
-    const Material& mi = materials[balls.material[i]];
-    const Material& mj = materials[balls.material[j]];
-    ContactState st;
-    st.overlap = overlap;
-    st.normal = n;
-    st.vrel = point_velocity(bodies, bi, p) - point_velocity(bodies, bj, p);
-    st.kn = series_stiffness(mi.kn, mj.kn);
-    st.ks = series_stiffness(mi.ks, mj.ks);
-    st.mu = contact_friction(mi.mu, mj.mu);
-    st.cn = st.cs = 0.0;
-    if (damped) {
-      const double m_eff = bodies.mass[bi] * bodies.mass[bj] / (bodies.mass[bi] + bodies.mass[bj]);
-      st.cn = dashpot_coefficient(s.damping_ratio, m_eff, st.kn);
-      st.cs = dashpot_coefficient(s.damping_ratio, m_eff, st.ks);
-    }
-    st.dt = s.dt;
-    Vec3 unused = Vec3::Zero();
-    Vec3& hist = kFriction ? cl.shear_force[c] : unused;
-    store_contact(cl, c, linear_contact<kFriction>(st, hist), p);
+[[gnu::always_inline]] inline V3 velocity_at(const BodyStore& bodies, Index b, const V3& arm) {
+  return load(bodies.velocity[b]) + cross(load(bodies.angular_velocity[b]), arm);
+}
+
+template <bool kFriction, bool kDamped>
+[[gnu::always_inline]] inline ContactResult evaluate(ContactList& cl, Index c, ContactState& st,
+                                                     const PairProperties& pp,
+                                                     const ForceSettings& s, double m_eff) {
+  st.kn = pp.kn;
+  st.ks = pp.ks;
+  st.mu = pp.mu;
+  st.cn = st.cs = 0.0;
+  if constexpr (kDamped) {
+    st.cn = dashpot_coefficient(s.damping_ratio, m_eff, st.kn);
+    st.cs = dashpot_coefficient(s.damping_ratio, m_eff, st.ks);
   }
+  st.dt = s.dt;
+  V3 hist{0.0, 0.0, 0.0};
+  if constexpr (kFriction) hist = load(cl.shear_force[c]);
+  const ContactResult r = linear_contact<kFriction, kDamped>(st, hist);
+  if constexpr (kFriction) store(cl.shear_force[c], hist);
+  record<kDamped>(cl, c, r);
+  return r;
 }
 
-template <bool kFriction>
-void wall_contact_loop(const BallStore& balls, const BodyStore& bodies,
-                       const std::vector<Material>& materials, const std::vector<Wall>& walls,
-                       const ForceSettings& s, ContactList& cl) {
-  const Index n = cl.size();
-  const bool damped = s.damping_ratio > 0.0;
+// Ball–ball contact c, seen from its side a (ball i). Adds the wrench on i to
+// (f, t) and stores the wrench on b.
+template <bool kFriction, bool kDamped>
+[[gnu::always_inline]] inline void ball_ball(const BallStore& balls, const BodyStore& bodies,
+                                             const PairTable& pairs, const ForceSettings& s,
+                                             ContactList& cl, Index c, Index i, const V3& xi,
+                                             double ri, V3& f, V3& t) {
+  const Index j = cl.b[c];
+  const V3 xj = load(balls.position[j]);
+  const V3 d = xi - xj;
+  const double rj = balls.radius[j];
+  const double dist2 = dot(d, d);
+  const double reach = ri + rj;
+  if (dist2 >= reach * reach) {
+    open_contact<kFriction>(cl, c);
+    return;
+  }
+  const double dist = std::sqrt(dist2);
+  const V3 normal = (1.0 / dist) * d;  // from j towards i
+  const double overlap = reach - dist;
+  const Index bi = balls.body[i], bj = balls.body[j];
+  double m_eff = 0.0;
+  if constexpr (kDamped)
+    m_eff = bodies.mass[bi] * bodies.mass[bj] / (bodies.mass[bi] + bodies.mass[bj]);
+  const PairProperties& pp = pairs.balls(balls.material[i], balls.material[j]);
+  ContactState st;
+  st.overlap = overlap;
+  st.normal = normal;
+  // The contact point sits mid-overlap: li from i's centre, lj from j's.
+  const double li = ri - 0.5 * overlap, lj = rj - 0.5 * overlap;
+  if (bodies.is_sphere[bi] && bodies.is_sphere[bj]) {
+    // Two spheres: both lever arms lie along the normal (−li·n and +lj·n), so one
+    // cross product gives the relative spin velocity and one both moments.
+    st.vrel = (load(bodies.velocity[bi]) - load(bodies.velocity[bj])) -
+              cross(li * load(bodies.angular_velocity[bi]) + lj * load(bodies.angular_velocity[bj]),
+                    normal);
+    const ContactResult r = evaluate<kFriction, kDamped>(cl, c, st, pp, s, m_eff);
+    const V3 nxf = cross(normal, r.force);
+    f += r.force;
+    t += (-li) * nxf;
+    store(cl.b_wrench[c].force, -r.force);
+    store(cl.b_wrench[c].torque, (-lj) * nxf);
+    return;
+  }
+  // A clump's ball: lever arms from each body's centre of mass to the contact point.
+  const V3 p = xj + lj * normal;
+  const V3 arm_i = p - load(bodies.position[bi]), arm_j = p - load(bodies.position[bj]);
+  st.vrel = velocity_at(bodies, bi, arm_i) - velocity_at(bodies, bj, arm_j);
+  const ContactResult r = evaluate<kFriction, kDamped>(cl, c, st, pp, s, m_eff);
+  f += r.force;
+  t += cross(arm_i, r.force);
+  const V3 minus = -r.force;
+  store(cl.b_wrench[c].force, minus);
+  store(cl.b_wrench[c].torque, cross(arm_j, minus));
+}
+
+// Ball–wall contact c of ball i. Adds the wrench on i to (f, t) and stores the force
+// on the wall.
+template <bool kFriction, bool kDamped>
+[[gnu::always_inline]] inline void ball_wall(const BallStore& balls, const BodyStore& bodies,
+                                             const PairTable& pairs, const std::vector<Wall>& walls,
+                                             const ForceSettings& s, ContactList& cl, Index c,
+                                             Index i, const V3& x, double r, V3& f, V3& t) {
+  const Wall& w = walls[cl.b[c]];
+  double overlap;
+  V3 normal, point;
+  if (w.shape == WallShape::Plane) {  // the common case, inlined (touch_wall's formula)
+    normal = load(w.normal);
+    const double sd = dot(normal, x - load(w.point));  // signed distance of the centre
+    overlap = r - sd;
+    point = x - sd * normal;
+  } else {
+    const WallTouch touch = touch_wall(w, balls.position[i], r);
+    overlap = touch.overlap;
+    normal = load(touch.normal);
+    point = load(touch.point);
+  }
+  if (overlap <= 0.0) {
+    open_contact<kFriction>(cl, c);
+    return;
+  }
+  const Index bi = balls.body[i];
+  const V3 arm = point - load(bodies.position[bi]);
+  ContactState st;
+  st.overlap = overlap;
+  st.normal = normal;
+  st.vrel = velocity_at(bodies, bi, arm) - load(w.velocity);
+  const ContactResult res = evaluate<kFriction, kDamped>(
+      cl, c, st, pairs.wall(balls.material[i], cl.b[c]), s, kDamped ? bodies.mass[bi] : 0.0);
+  f += res.force;
+  t += cross(arm, res.force);
+  store(cl.b_wrench[c].force, -res.force);
+}
+
+template <bool kFriction, bool kDamped>
+void contact_pass(const BallStore& balls, const BodyStore& bodies, const PairTable& pairs,
+                  const std::vector<Wall>& walls, const ForceSettings& s, ContactList& bc,
+                  ContactList& wc, std::vector<Wrench>& a_side) {
+  const Index n = balls.size();
+  const bool has_walls = wc.size() > 0;
 #pragma omp for schedule(static) nowait
-  for (Index c = 0; c < n; ++c) {
-    const Index i = cl.a[c];
-    const Wall& w = walls[cl.b[c]];
-    const WallTouch t = touch_wall(w, balls.position[i], balls.radius[i]);
-    if (t.overlap <= 0.0) {
-      open_contact<kFriction>(cl, c);
-      continue;
-    }
-    const Index bi = balls.body[i];
-    const Material& mi = materials[balls.material[i]];
-    ContactState st;
-    st.overlap = t.overlap;
-    st.normal = t.normal;
-    st.vrel = point_velocity(bodies, bi, t.point) - w.velocity;
-    st.kn = series_stiffness(mi.kn, w.material.kn);
-    st.ks = series_stiffness(mi.ks, w.material.ks);
-    st.mu = contact_friction(mi.mu, w.material.mu);
-    st.cn = st.cs = 0.0;
-    if (damped) {
-      st.cn = dashpot_coefficient(s.damping_ratio, bodies.mass[bi], st.kn);
-      st.cs = dashpot_coefficient(s.damping_ratio, bodies.mass[bi], st.ks);
-    }
-    st.dt = s.dt;
-    Vec3 unused = Vec3::Zero();
-    Vec3& hist = kFriction ? cl.shear_force[c] : unused;
-    store_contact(cl, c, linear_contact<kFriction>(st, hist), t.point);
+  for (Index i = 0; i < n; ++i) {
+    const V3 x = load(balls.position[i]);
+    const double r = balls.radius[i];
+    V3 f{0.0, 0.0, 0.0}, t{0.0, 0.0, 0.0};
+    for (Index c = bc.a_first[i]; c < bc.a_first[i + 1]; ++c)
+      ball_ball<kFriction, kDamped>(balls, bodies, pairs, s, bc, c, i, x, r, f, t);
+    if (has_walls)
+      for (Index c = wc.a_first[i]; c < wc.a_first[i + 1]; ++c)
+        ball_wall<kFriction, kDamped>(balls, bodies, pairs, walls, s, wc, c, i, x, r, f, t);
+    store(a_side[i].force, f);
+    store(a_side[i].torque, t);
   }
 }
 
 }  // namespace
 
-void compute_ball_contacts(const BallStore& balls, const BodyStore& bodies,
-                           const std::vector<Material>& materials, const ForceSettings& s,
-                           ContactList& contacts) {
-  if (s.friction)
-    ball_contact_loop<true>(balls, bodies, materials, s, contacts);
+// One instantiation per combination of friction and dashpots, so that a scene
+// without either pays for neither, not even a branch per contact.
+void compute_contacts(const BallStore& balls, const BodyStore& bodies, const PairTable& pairs,
+                      const std::vector<Wall>& walls, const ForceSettings& s,
+                      ContactList& ball_contacts, ContactList& wall_contacts,
+                      std::vector<Wrench>& a_side) {
+  const bool damped = s.damping_ratio > 0.0;
+  if (s.friction && damped)
+    contact_pass<true, true>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts, a_side);
+  else if (s.friction)
+    contact_pass<true, false>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts, a_side);
+  else if (damped)
+    contact_pass<false, true>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts, a_side);
   else
-    ball_contact_loop<false>(balls, bodies, materials, s, contacts);
-}
-
-void compute_wall_contacts(const BallStore& balls, const BodyStore& bodies,
-                           const std::vector<Material>& materials, const std::vector<Wall>& walls,
-                           const ForceSettings& s, ContactList& contacts) {
-  if (s.friction)
-    wall_contact_loop<true>(balls, bodies, materials, walls, s, contacts);
-  else
-    wall_contact_loop<false>(balls, bodies, materials, walls, s, contacts);
-}
-
-void gather_body_force(Index body, const ContactList& bc, const ContactList& wc,
-                       const Vec3& gravity, BallStore& balls, BodyStore& bodies) {
-  const bool has_walls = wc.size() > 0;
-  const Vec3 x = bodies.position[body];
-  Vec3 f = bodies.mass[body] * gravity;
-  Vec3 m = Vec3::Zero();
-  const Index first = bodies.first_ball[body], last = first + bodies.ball_count[body];
-  for (Index ball = first; ball < last; ++ball) {
-    for (Index k = bc.ball_offset[ball]; k < bc.ball_offset[ball + 1]; ++k) {
-      const Index e = bc.ball_entry[k];
-      const Index c = e >> 1;
-      if (!bc.active[c]) continue;
-      const Vec3 fc = (e & 1) ? Vec3(-bc.force[c]) : bc.force[c];
-      f += fc;
-      m += (bc.point[c] - x).cross(fc);
-      if (!(e & 1)) {
-        balls.friction_dissipated[ball] += bc.slip_work[c];
-        balls.viscous_dissipated[ball] += bc.viscous_work[c];
-      }
-    }
-    if (!has_walls) continue;
-    for (Index k = wc.ball_offset[ball]; k < wc.ball_offset[ball + 1]; ++k) {
-      const Index c = wc.ball_entry[k] >> 1;
-      if (!wc.active[c]) continue;
-      f += wc.force[c];
-      m += (wc.point[c] - x).cross(wc.force[c]);
-      balls.friction_dissipated[ball] += wc.slip_work[c];
-      balls.viscous_dissipated[ball] += wc.viscous_work[c];
-    }
-  }
-  bodies.force[body] = f;
-  bodies.torque[body] = m;
+    contact_pass<false, false>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts,
+                               a_side);
 }
 
 }  // namespace ballast

@@ -14,7 +14,8 @@
 #include "engine/ball_store.hpp"
 #include "engine/body_store.hpp"
 #include "engine/contact_list.hpp"
-#include "engine/material.hpp"
+#include "engine/pair_table.hpp"
+#include "engine/v3.hpp"
 #include "engine/walls.hpp"
 
 namespace ballast {
@@ -25,25 +26,39 @@ struct ForceSettings {
   bool friction = true;        // false: frictionless scene, no shear history
 };
 
-// Ball–ball contacts: fills force, point, normal_force, works and active flags.
-// Both contact loops end without a barrier (`nowait`): inside a parallel region the
-// caller must put `#pragma omp barrier` before anything reads their results.
-void compute_ball_contacts(const BallStore& balls, const BodyStore& bodies,
-                           const std::vector<Material>& materials, const ForceSettings& s,
-                           ContactList& contacts);
+// The force pass: every candidate contact is evaluated once, by the ball that is its
+// side a (contact_list.hpp explains the layout). a_side[i] receives the sum of the
+// wrenches on ball i from the contacts it is side a of, ball–ball then ball–wall, in
+// contact order; each contact stores the wrench on its side b. An orphaned
+// `omp for` over balls without a barrier (`nowait`): inside a parallel region the
+// caller must put `#pragma omp barrier` before anything reads the results.
+void compute_contacts(const BallStore& balls, const BodyStore& bodies, const PairTable& pairs,
+                      const std::vector<Wall>& walls, const ForceSettings& s,
+                      ContactList& ball_contacts, ContactList& wall_contacts,
+                      std::vector<Wrench>& a_side);
 
-// Ball–wall contacts (b = wall index).
-void compute_wall_contacts(const BallStore& balls, const BodyStore& bodies,
-                           const std::vector<Material>& materials, const std::vector<Wall>& walls,
-                           const ForceSettings& s, ContactList& contacts);
-
-// Sums the contact forces on one body's balls and gravity into its force and
-// torque, and books the contacts' dissipated energy on the ball that owns them
-// (side a). Reads only contact arrays and this body's state, so the integrator can
-// call it body by body in its own parallel loop (no pass, no barrier of its own).
-void gather_body_force(Index body, const ContactList& ball_contacts,
-                       const ContactList& wall_contacts, const Vec3& gravity, BallStore& balls,
-                       BodyStore& bodies);
+// Sums one body's contact wrenches and gravity into its force and torque: its balls'
+// a-side sums, then the b-side wrenches of the contacts its balls are side b of (an
+// open contact holds zeros, so all are added without a branch). A body's balls are
+// contiguous and so are their b entries. Fixed order, any thread count. Inline: it
+// runs once per body per step inside the integrator's loop.
+inline void gather_body_force(Index body, const ContactList& bc, const std::vector<Wrench>& a_side,
+                              const Vec3& gravity, BodyStore& bodies) {
+  V3 f = bodies.mass[body] * load(gravity);
+  V3 m{0.0, 0.0, 0.0};
+  const Index first = bodies.first_ball[body], last = first + bodies.ball_count[body];
+  for (Index k = first; k < last; ++k) {
+    f += load(a_side[k].force);
+    m += load(a_side[k].torque);
+  }
+  for (Index e = bc.b_first[first]; e < bc.b_first[last]; ++e) {
+    const Wrench& w = bc.b_wrench[bc.b_contact[e]];
+    f += load(w.force);
+    m += load(w.torque);
+  }
+  store(bodies.force[body], f);
+  store(bodies.torque[body], m);
+}
 
 // Velocity of a body's material point at world position p (half-step velocities).
 inline Vec3 point_velocity(const BodyStore& bodies, Index body, const Vec3& p) {

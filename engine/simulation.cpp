@@ -195,7 +195,9 @@ void Simulation::quench() {
   }
 }
 
-void Simulation::reset_motion_reference() { bodies_.reset_motion_reference(); }
+void Simulation::reset_motion_reference() {
+  bodies_.reset_motion_reference();
+}
 
 void Simulation::set_size_scale(double scale) {
   require_setup(scale > 0.0 && scale <= 1.0, "size scale", scale, "(0, 1]");
@@ -232,6 +234,7 @@ bool Simulation::scene_has_friction() const {
 }
 
 void Simulation::refresh_friction_state() {
+  pairs_stale_ = true;  // called whenever a material or wall property changes
   const bool now = scene_has_friction();
   if (now == friction_) return;
   friction_ = now;
@@ -311,6 +314,9 @@ void Simulation::rebuild_neighbours() {
                               std::to_string(balls_.body[k]) + " left the domain (ball at " +
                               vec_str(balls_.position[k]) + ")");
   }
+  // The list is about to be replaced: hand what its contacts dissipated to the balls.
+  ball_contacts_.flush_dissipation(balls_.friction_dissipated, balls_.viscous_dissipated);
+  wall_contacts_.flush_dissipation(balls_.friction_dissipated, balls_.viscous_dissipated);
   cells_.build(balls_.position, settings_.domain_lo, settings_.domain_hi,
                2.0 * max_radius_ + skin_);
   std::vector<Index> a, b;
@@ -329,6 +335,7 @@ void Simulation::rebuild_neighbours() {
         }
   }
   wall_contacts_.rebuild(std::move(wa), std::move(wb), friction_, n, false);
+  a_side_.assign(n, Wrench{Vec3::Zero(), Vec3::Zero()});
 
   reference_positions_ = balls_.position;
   scale_at_build_ = size_scale_;
@@ -342,7 +349,7 @@ void Simulation::rebuild_neighbours() {
 void Simulation::sum_wall_forces() {
   for (Vec3& f : wall_force_) f.setZero();
   for (Index c = 0; c < wall_contacts_.size(); ++c)
-    if (wall_contacts_.active[c]) wall_force_[wall_contacts_.b[c]] -= wall_contacts_.force[c];
+    if (wall_contacts_.active[c]) wall_force_[wall_contacts_.b[c]] -= wall_contacts_.force(c);
 }
 
 void Simulation::drive_walls() {
@@ -375,19 +382,22 @@ void Simulation::drive_walls() {
 void Simulation::step() {
   if (!prepared_) prepare();
   if (needs_rebuild_) rebuild_neighbours();
+  if (pairs_stale_) {
+    pairs_.build(materials_, walls_);
+    pairs_stale_ = false;
+  }
   const bool has_walls = !walls_.empty();
   const ForceSettings fs{dt_, settings_.damping_ratio, friction_};
   const IntegratorSettings is{dt_, settings_.local_damping, settings_.gravity, settings_.max_speed,
                               settings_.rotation};
   IntegrationReport r;
-  // One parallel region per step and two barriers: contact loops (no barrier
-  // between them), then per body gather + integrate (forces.hpp, integrator.hpp).
+  // One parallel region per step and two barriers: the force pass (forces.hpp),
+  // then per body gather + integrate (integrator.hpp).
 #pragma omp parallel
   {
-    compute_ball_contacts(balls_, bodies_, materials_, fs, ball_contacts_);
-    if (has_walls) compute_wall_contacts(balls_, bodies_, materials_, walls_, fs, wall_contacts_);
+    compute_contacts(balls_, bodies_, pairs_, walls_, fs, ball_contacts_, wall_contacts_, a_side_);
 #pragma omp barrier
-    integrate(is, ball_contacts_, wall_contacts_, reference_positions_, bodies_, balls_, r);
+    integrate(is, ball_contacts_, a_side_, reference_positions_, bodies_, balls_, r);
   }
   if (r.bad_body != kNoIndex) {
     std::ostringstream m;
@@ -417,8 +427,8 @@ void Simulation::step() {
   if (!settings_.fixed_dt && steps_ % kTimestepRefreshSteps == 0) update_timestep();
   const double half = 0.5 * skin_;
   const double growth = std::max(0.0, size_scale_ - scale_at_build_) * max_full_radius_;
-  needs_rebuild_ = needs_rebuild_ || std::sqrt(r.max_ball_shift2) + growth > half ||
-                   wall_shift2 > half * half;
+  needs_rebuild_ =
+      needs_rebuild_ || std::sqrt(r.max_ball_shift2) + growth > half || wall_shift2 > half * half;
 }
 
 void Simulation::run(long steps) {

@@ -21,6 +21,7 @@
 #include "engine/contact_list.hpp"
 #include "engine/diagnostics.hpp"
 #include "engine/material.hpp"
+#include "engine/pair_table.hpp"
 #include "engine/rigid_rotation.hpp"
 #include "engine/servo.hpp"
 #include "engine/timestep.hpp"
@@ -41,7 +42,7 @@ struct SimulationSettings {
   double max_speed = 100.0;              // m/s; a body faster than this means blow-up
   std::string contact_model = "linear";  // a name from kContactModels (contact_law.hpp)
   RotationIntegrator rotation = RotationIntegrator::kPfc;  // clumps: "pfc" or "full"
-  std::ostream* log = nullptr;           // where the start-up report goes (nullptr: silent)
+  std::ostream* log = nullptr;  // where the start-up report goes (nullptr: silent)
 };
 
 class Simulation {
@@ -142,8 +143,10 @@ class Simulation {
   BodyStore bodies_;
   std::vector<Wall> walls_;
   std::vector<Servo> servos_;
+  PairTable pairs_;  // combined contact properties; rebuilt when pairs_stale_
   CellList cells_;
   ContactList ball_contacts_, wall_contacts_;
+  std::vector<Wrench> a_side_;             // per ball, this step: wrenches of its side-a contacts
   std::vector<Vec3> reference_positions_;  // ball positions at the last neighbour build
   std::vector<Vec3> wall_reference_;       // wall displacements at the last build
   std::vector<Vec3> wall_force_;
@@ -155,7 +158,7 @@ class Simulation {
   TimestepEstimate estimate_;  // the last critical-timestep estimate
   double time_ = 0.0, dt_ = 0.0, skin_ = 0.0, max_radius_ = 0.0;
   long steps_ = 0, builds_ = 0;
-  bool prepared_ = false, friction_ = false, needs_rebuild_ = false;
+  bool prepared_ = false, friction_ = false, needs_rebuild_ = false, pairs_stale_ = true;
 };
 
 }  // namespace ballast

@@ -38,18 +38,18 @@ TimestepEstimate estimate_critical_timestep(const BallStore& balls, const BodySt
       one.add(0.5 * m.kn, 0.5 * m.ks, (px - x) + r * Vec3::UnitX(), Vec3::UnitX());
       floor.tran = std::max(floor.tran, one.tran);
       floor.rot = std::max(floor.rot, one.rot);
-      for (Index e = bc.ball_offset[ball]; e < bc.ball_offset[ball + 1]; ++e) {
-        const Index c = bc.ball_entry[e] >> 1;
-        const Index other = (bc.ball_entry[e] & 1) ? bc.a[c] : bc.b[c];
+      const auto add_ball = [&](Index other) {
         const Vec3 d = px - balls.position[other];
         const double reach = r + balls.radius[other];
-        if (d.squaredNorm() >= reach * reach) continue;
+        if (d.squaredNorm() >= reach * reach) return;
         const Vec3 n = d.normalized();
         const Material& mo = materials[balls.material[other]];
         k.add(series_stiffness(m.kn, mo.kn), series_stiffness(m.ks, mo.ks), (px - x) - r * n, n);
-      }
-      for (Index e = wc.ball_offset[ball]; e < wc.ball_offset[ball + 1]; ++e) {
-        const Index c = wc.ball_entry[e] >> 1;
+      };
+      for (Index c = bc.a_first[ball]; c < bc.a_first[ball + 1]; ++c) add_ball(bc.b[c]);
+      for (Index e = bc.b_first[ball]; e < bc.b_first[ball + 1]; ++e)
+        add_ball(bc.a[bc.b_contact[e]]);
+      for (Index c = wc.a_first[ball]; c < wc.a_first[ball + 1]; ++c) {
         const Wall& w = walls[wc.b[c]];
         const WallTouch t = touch_wall(w, px, r);
         if (t.overlap <= 0.0) continue;
