@@ -135,9 +135,9 @@ class Run:
 
     def attribute(self, name, path=""):
         """Attribute `name` of the run (or of the group at `path` inside it)."""
-        obj = self.group[path] if path else self.group
         if path and path not in self.group:
             raise ArchiveError(f"{self.where} has no group {path}")
+        obj = self.group[path] if path else self.group
         if name not in obj.attrs:
             raise ArchiveError(f"{self.where} has no attribute {name}"
                                + (f" on {path}" if path else ""))

@@ -27,8 +27,8 @@ STAGE_LABELS = {"before": "before loading", "peak": "at peak load", "after": "af
 def quantities(run, paper=None):
     """(key, label, ours, paper, format) for every quantity the run has. `paper` is the
     paper's numbers to set beside them (default: those of the run's own sample)."""
-    a, p = run.attrs, paper_values(run) if paper is None else paper
-    rows = [("porosity_grid", "porosity, 5 mm grid under the sleeper", a["porosity_grid"],
+    a, p = run.attribute, paper_values(run) if paper is None else paper
+    rows = [("porosity_grid", "porosity, 5 mm grid under the sleeper", a("porosity_grid"),
              p.get("porosity"), "{:.3f}")]
     if run.has("porosity/sphere_porosity") and len(run.data("porosity/sphere_porosity")):
         rows.append(("porosity_spheres", "porosity, measurement spheres on the column axis "
@@ -37,35 +37,35 @@ def quantities(run, paper=None):
     for k, stage in enumerate(STAGES):
         if not run.has(f"contacts/{stage}"):
             continue
-        c = run.group[f"contacts/{stage}"].attrs
+        c = lambda name: run.attribute(name, f"contacts/{stage}")  # noqa: E731
         pc = p["contacts"][k] if "contacts" in p else (None, None, None)
         label = f"contacts {STAGE_LABELS[stage]}"
         rows += [(f"contacts_{stage}_count", f"{label}: count (ball–ball + ball–wall)",
-                  int(c["ball_contacts"]) + int(c["wall_contacts"]), pc[0], "{:,.0f}"),
+                  int(c("ball_contacts")) + int(c("wall_contacts")), pc[0], "{:,.0f}"),
                  (f"contacts_{stage}_max_force_N", f"{label}: max force (N)",
-                  float(c["max_force"]), pc[1], "{:,.0f}"),
+                  float(c("max_force")), pc[1], "{:,.0f}"),
                  (f"contacts_{stage}_mean_force_N", f"{label}: mean force (N)",
-                  float(c["mean_force"]), pc[2], "{:.1f}")]
+                  float(c("mean_force")), pc[2], "{:.1f}")]
     if not run.loaded:
         return rows
     for k, phase in enumerate(PHASES):
         pr = p["rotation"][k] if "rotation" in p else (None, None)
         rows += [(f"rotation_{phase}_mean_deg", f"rotation, {phase}: mean (°)",
-                  a[f"rotation_{phase}_mean_deg"], pr[0], "{:.3g}"),
+                  a(f"rotation_{phase}_mean_deg"), pr[0], "{:.3g}"),
                  (f"rotation_{phase}_max_deg", f"rotation, {phase}: max (°)",
-                  a[f"rotation_{phase}_max_deg"], pr[1], "{:.3g}")]
+                  a(f"rotation_{phase}_max_deg"), pr[1], "{:.3g}")]
     pd = p.get("displacement_mm", (None, None))
     rows += [("max_displacement_peak_mm", "max displacement at peak load (mm)",
-              a["max_displacement_peak"] * MM, pd[0], "{:.3g}"),
+              a("max_displacement_peak") * MM, pd[0], "{:.3g}"),
              ("max_displacement_after_mm", "max displacement after the cycle (mm)",
-              a["max_displacement_after"] * MM, pd[1], "{:.3g}"),
+              a("max_displacement_after") * MM, pd[1], "{:.3g}"),
              ("settlement_peak_mm", "sleeper settlement at peak (mm)",
-              a["settlement_peak"] * MM, None, "{:.3g}"),
+              a("settlement_peak") * MM, None, "{:.3g}"),
              ("permanent_settlement_mm", "permanent settlement (mm)",
-              a["permanent_settlement"] * MM, None, "{:.3g}"),
+              a("permanent_settlement") * MM, None, "{:.3g}"),
              ("resilient_settlement_mm", "resilient settlement (mm)",
-              a["resilient_settlement"] * MM, None, "{:.3g}"),
-             ("rms_force_error_N", "sleeper force error, rms (N)", a["rms_force_error"], None,
+              a("resilient_settlement") * MM, None, "{:.3g}"),
+             ("rms_force_error_N", "sleeper force error, rms (N)", a("rms_force_error"), None,
               "{:,.0f}")]
     return rows
 
@@ -77,7 +77,7 @@ def cell(value, paper, fmt):
 
 
 def scale_row(run):
-    return (f"{int(run.attrs['bodies'])} bodies, {int(run.attrs['balls'])} balls, "
+    return (f"{int(run.attribute('bodies'))} bodies, {int(run.attribute('balls'))} balls, "
             f"{float(run.scene_value('sleeper', 'peak_load')) / 1e3:g} kN")
 
 

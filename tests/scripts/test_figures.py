@@ -223,6 +223,22 @@ class Figures(unittest.TestCase):
                     self.assertIn(f"{path}: {message}", r.stderr)
                     self.assertFalse(os.path.exists(self.out_dir("refused")))
 
+    def test_a_damaged_run_loses_only_the_figures_that_need_the_missing_data(self):
+        damaged = os.path.join(self.tmp.name, "damaged.h5")
+        with h5py.File(self.clumps, "r") as f:
+            scene = f.attrs["scene_json"]
+        make_study(damaged, scene, [{"id": "T2S1-r1", "run_file": self.clumps, "sample": "T2S1",
+                                     "params": {"shape": "table2/sample1"}}])
+        with h5py.File(damaged, "a") as f:
+            del f["runs/T2S1-r1/particles/rotation_unloading"]
+        r = script("figures.py", damaged, "--out", self.out_dir("damaged"))
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("Figs 13-14 of run 'T2S1-r1' not drawn: " + damaged
+                      + ": run 'T2S1-r1' has no dataset particles/rotation_unloading", r.stderr)
+        self.assertNotIn("fig14_rotations_T2S1-r1.png", written(r))
+        self.assertIn("fig12_contacts_T2S1-r1.png", written(r))
+        self.assertIn("fig18_load_deformation.png", written(r))
+
     def test_study_displacements_equal_the_single_run_positions(self):
         with open_archive(self.study) as study, open_archive(self.clumps) as single:
             for stage in ("peak", "end"):
