@@ -161,7 +161,7 @@ PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
          << shrink << " of full radius in a " << s.length * 1e3 << " x " << s.width * 1e3 << " x "
          << fill * 1e3 << " mm region (initial porosity " << s.initial_porosity << ")\n";
 
-  PreparedBed out{Simulation(settings_for(s, r)), {}, 0.0};
+  PreparedBed out{Simulation(settings_for(s, r)), {}, 0.0, {}};
   {
     // Frictionless while growing; friction comes with compaction.
     Simulation& sim = out.sim;
@@ -179,8 +179,8 @@ PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
     // its sphere, then grown back under gravity with the lid gone.
     const ClumpParams& p = *s.clumps;
     ClumpMassOptions mass{s.mass_mode, s.density, s.mass_accuracy};
-    const std::vector<ClumpTemplate> templates =
-        generate_clump_templates(p, mass, static_cast<std::size_t>(s.count), s.seed);
+    out.templates = generate_clump_templates(p, mass, static_cast<std::size_t>(s.count), s.seed);
+    const std::vector<ClumpTemplate>& templates = out.templates;
     const double bound = r * p.virtual_sphere_factor;
     Simulation sim(settings_for(s, bound));
     const Index mat = sim.add_material({s.ball_stiffness, s.ball_stiffness, 0.0});
