@@ -14,6 +14,17 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
+// "stage 3: compaction at 10 g, then 1 g" -> "3/4 compaction" (box_test_prepare.hpp's
+// stages; 2 is the clumps', which spheres skip).
+std::string stage_label(const std::string& stage) {
+  static const char* const names[] = {"", "spheres", "clumps", "compaction", "loading"};
+  const std::size_t colon = stage.find(':');
+  if (stage.rfind("stage ", 0) != 0 || colon == std::string::npos) return stage;
+  const std::string number = stage.substr(6, colon - 6);
+  const int n = number.size() == 1 ? number[0] - '0' : 0;
+  return n >= 1 && n <= 4 ? number + "/4 " + names[n] : stage.substr(0, colon);
+}
+
 }  // namespace
 
 ProgressBoard::ProgressBoard(std::ostream& out, bool live, std::size_t to_do, std::size_t done,
@@ -60,9 +71,9 @@ void ProgressBoard::draw_block() {
   if (!live_ || closed_) return;
   for (const auto& [id, a] : active_) {
     char line[256];
-    std::snprintf(line, sizeof line, "  %-28s %8s  %-40.40s  %s %ld steps\n", id.c_str(),
-                  duration_text(seconds_since(a.start)).c_str(), a.stage.c_str(),
-                  a.step.empty() ? "-" : a.step.c_str(), a.steps);
+    std::snprintf(line, sizeof line, "  %-30s %8s  stage %-14s %9ld steps%s%s\n", id.c_str(),
+                  duration_text(seconds_since(a.start)).c_str(), stage_label(a.stage).c_str(),
+                  a.steps, a.step.empty() ? "" : ", last: ", a.step.c_str());
     out_ << line;
     ++block_lines_;
   }
@@ -73,7 +84,7 @@ void ProgressBoard::draw_block() {
 
 void ProgressBoard::started(const RunSpec& run, int threads) {
   std::lock_guard<std::mutex> lock(mutex_);
-  active_[run.id] = Active{Clock::now(), "starting", "", 0, threads};
+  active_[run.id] = Active{Clock::now(), "-", "", 0, threads};
   if (live_) {
     erase_block();
     draw_block();

@@ -154,19 +154,25 @@ int run_study(const StudyOptions& o) {
   std::unique_ptr<StudyStore> store = o.resume ? StudyStore::resume(o.output, header, report)
                                                : StudyStore::create(o.output, header, report);
   std::vector<const PreparedRun*> todo;
+  std::size_t archived = 0, retried = 0;
   for (const PreparedRun* r : in_shard) {
     const auto it = store->recorded().find(r->spec->id);
-    if (it == store->recorded().end() || (o.retry_failed && !it->second)) todo.push_back(r);
+    const bool found = it != store->recorded().end();
+    const bool retry = found && o.retry_failed && !it->second;
+    archived += found ? 1 : 0;
+    retried += retry ? 1 : 0;
+    if (!found || retry) todo.push_back(r);
   }
   const Parallelism plan = plan_parallelism(cores, todo.size(), o.jobs, o.threads);
   std::cout << "study '" << p.spec.name << "' (" << p.spec.runs.size() << " runs, shard "
-            << shard.text() << ": " << in_shard.size() << "): " << in_shard.size() - todo.size()
-            << " in the archive, " << todo.size() << " to run, " << plan.jobs << " side by side x "
-            << plan.threads << " thread(s) on " << cores << " core(s); " << kProgramName << " "
-            << kProgramVersion << " (" << kGitRevision << ")\n"
+            << shard.text() << ": " << in_shard.size() << "): " << archived << " in the archive"
+            << (retried ? " (" + std::to_string(retried) + " failed, run again)" : "") << ", "
+            << todo.size() << " to run, " << plan.jobs << " side by side x " << plan.threads
+            << " thread(s) on " << cores << " core(s); " << kProgramName << " " << kProgramVersion
+            << " (" << kGitRevision << ")\n"
             << std::flush;
 
-  ProgressBoard board(std::cout, live, todo.size(), in_shard.size() - todo.size(), plan.jobs);
+  ProgressBoard board(std::cout, live, todo.size(), archived - retried, plan.jobs);
   board_ptr = &board;
   std::exception_ptr failure;
   std::mutex failure_mutex;
