@@ -163,6 +163,13 @@ int run_study(const StudyOptions& o) {
     retried += retry ? 1 : 0;
     if (!found || retry) todo.push_back(r);
   }
+  std::size_t other_builds = 0;  // runs another build made: results may not match ours
+  for (const auto& [id, revision] : store->revisions()) other_builds += revision != kGitRevision;
+  if (other_builds > 0) {
+    report("note: " + std::to_string(other_builds) + " runs in " + o.output +
+           " were made by another build (git_revision differs from " + kGitRevision +
+           "): each run's git_revision attribute says which");
+  }
   const Parallelism plan = plan_parallelism(cores, todo.size(), o.jobs, o.threads);
   std::cout << "study '" << p.spec.name << "' (" << p.spec.runs.size() << " runs, shard "
             << shard.text() << ": " << in_shard.size() << "): " << archived << " in the archive"

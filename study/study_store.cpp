@@ -40,7 +40,7 @@ hid_t try_open(const std::string& path, unsigned flags) {
 }
 
 struct PartInfo {
-  std::string path, id, finished;
+  std::string path, id, finished, git_revision;
   bool ok = false;
 };
 
@@ -59,7 +59,7 @@ std::optional<PartInfo> read_part(const std::string& path, const std::string& fi
   }
   Handle run(H5Gopen2(file, "run", H5P_DEFAULT), H5Gclose, "open /run in " + path);
   const ArchivedRun a = read_archived_run(run, path + ":/run");
-  return PartInfo{path, a.id, a.finished, a.ok};
+  return PartInfo{path, a.id, a.finished, a.git_revision, a.ok};
 }
 
 std::string aside_name(const std::string& path) {
@@ -207,6 +207,7 @@ std::unique_ptr<StudyStore> StudyStore::resume(const std::string& path,
   bool unsaved = false;  // archived runs that no part holds
   for (const auto& [id, a] : archive.runs) {
     s->recorded_[id] = a.ok;
+    s->revisions_[id] = a.git_revision;
     unsaved = unsaved || !part_of.count(id);
   }
   if (unsaved && archive.runs.size() != saved.runs.size()) {
@@ -220,6 +221,7 @@ std::unique_ptr<StudyStore> StudyStore::resume(const std::string& path,
     if (it == archive.runs.end() || it->second.finished != p.finished)
       s->pending_.push_back(p.path);
     s->recorded_[p.id] = p.ok;
+    s->revisions_[p.id] = p.git_revision;
   }
   if (!s->pending_.empty()) {
     s->report_("appending " + std::to_string(s->pending_.size()) +
@@ -288,6 +290,7 @@ void StudyStore::record(const RunRecord& r) {
   quiet_errors();  // this worker thread's HDF5 error setting
   pending_.push_back(write_part(r));
   recorded_[r.spec.id] = r.ok;
+  revisions_[r.spec.id] = r.git_revision;
   append_pending();
 }
 

@@ -43,6 +43,8 @@ class StudyStore {
 
   // Runs in the archive: id -> ok.
   const std::map<std::string, bool>& recorded() const { return recorded_; }
+  // Runs in the archive: id -> git revision of the program that ran it.
+  const std::map<std::string, std::string>& revisions() const { return revisions_; }
   // Writes the part, then appends it (and any part still pending) to the archive.
   // Thread-safe; a run recorded again (a retried failure) replaces its group.
   void record(const RunRecord& record);
@@ -74,6 +76,7 @@ class StudyStore {
   Report report_;
   std::mutex mutex_;
   std::map<std::string, bool> recorded_;
+  std::map<std::string, std::string> revisions_;
   std::vector<std::string> pending_;  // part files not yet in the archive
 };
 
