@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -151,6 +152,8 @@ int run_study(const StudyOptions& o) {
   };
   const StudyArchiveHeader header =
       make_archive_header(p.spec, p.study_text, p.scene_text, p.base_scene, shard);
+  const std::filesystem::path folder = std::filesystem::path(o.output).parent_path();
+  if (!folder.empty()) std::filesystem::create_directories(folder);
   std::unique_ptr<StudyStore> store = o.resume ? StudyStore::resume(o.output, header, report)
                                                : StudyStore::create(o.output, header, report);
   std::vector<const PreparedRun*> todo;
