@@ -194,7 +194,7 @@ PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
                       : std::string())
          << ")\n";
 
-  PreparedBed out{Simulation(settings_for(s, r)), {}, 0.0};
+  PreparedBed out{Simulation(settings_for(s, r)), {}, 0.0, {}};
   {
     // Frictionless while growing; friction comes with compaction.
     Simulation& sim = out.sim;
@@ -236,6 +236,7 @@ PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
         grow(sim, "clumps", 1.0 / p.virtual_sphere_factor, s.expansion_speed, log));
     sim.quench();
     out.sim = std::move(sim);
+    out.templates = std::move(templates);  // kept for the run's archive
   }
   lift_lid(out.sim, s.height);
   if (s.frictionless_settling) {

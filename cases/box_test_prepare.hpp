@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cases/box_test_scene.hpp"
+#include "engine/clump_template.hpp"
 #include "engine/simulation.hpp"
 
 namespace ballast {
@@ -33,6 +34,9 @@ struct PreparedBed {
   Simulation sim;
   std::vector<StageReport> stages;
   double dt_spheres = 0.0;  // s, timestep of stage 1
+  // Clump samples: body i's template (shape and mass properties), so that an archive
+  // can show the clumps (Fig. 7). Empty for spheres.
+  std::vector<ClumpTemplate> templates;
 };
 
 // Runs stages 1-3 (or fewer: scene.stop_after). Progress lines go to `log`

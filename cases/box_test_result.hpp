@@ -2,10 +2,13 @@
 // (angles in degrees, as the paper's figures). Written to HDF5 by study/.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cases/box_test_prepare.hpp"
+#include "engine/clump_shape.hpp"
 #include "engine/diagnostics.hpp"
 
 namespace ballast {
@@ -20,6 +23,17 @@ struct ContactSnapshot {
 
 struct RotationStats {
   double mean_deg = 0.0, max_deg = 0.0;
+};
+
+// The clumps a clump sample is made of (Fig. 7, and Table 1's clump statistics):
+// body i is templates[shape_index[i]], with the shape of its union of balls.
+struct ClumpSampleRecord {
+  std::string shape;  // the preset the parameters started from ("table2/sample1")
+  ClumpParams params;
+  ClumpMassOptions mass;
+  std::uint64_t seed = 0;
+  std::vector<ClumpTemplate> templates;
+  std::vector<ClumpShape> shapes;  // measure_clump_shapes(templates), same order
 };
 
 struct BoxTestResult {
@@ -55,6 +69,7 @@ struct BoxTestResult {
   std::vector<Vec3> position_start, position_peak, position_end;
   std::vector<double> rotation_deg_loading, rotation_deg_unloading, rotation_deg_cycle;
   std::vector<long> shape_index;
+  std::optional<ClumpSampleRecord> clumps;  // unset for spheres
 
   EnergyBudget energy;
 };

@@ -22,11 +22,9 @@ void read_particles(const nlohmann::json& j, BoxTestScene& s) {
   f.text("shape", s.shape, names, [&](const std::string& v) {
     return v == "spheres" || std::find(presets.begin(), presets.end(), v) != presets.end();
   });
-  long count = s.count, seed = static_cast<long>(s.seed);
-  f.integer("count", count, ">= 1", [](long v) { return v >= 1; });
-  f.integer("seed", seed, ">= 0", [](long v) { return v >= 0; });
-  s.count = count;
-  s.seed = static_cast<std::uint64_t>(seed);
+  f.integer("count", s.count, ">= 1", [](long v) { return v >= 1; });
+  // All 64 bits: a study run's seed is a 64-bit hash (docs/STUDY.md).
+  f.unsigned_integer("seed", s.seed);
   f.number("diameter", s.diameter, "> 0 m", positive);
   std::string mass = mass_mode_name(s.mass_mode);
   f.text("mass_mode", mass, "\"sum\", \"paper\" or \"uniform\"",

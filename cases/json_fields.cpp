@@ -44,6 +44,17 @@ bool JsonFields::integer(const char* key, long& out, const std::string& allowed,
   return true;
 }
 
+bool JsonFields::unsigned_integer(const char* key, std::uint64_t& out) {
+  const nlohmann::json* v = find(key);
+  if (!v) return false;
+  // nlohmann::json holds integers above INT64_MAX as unsigned, negative ones as signed.
+  const bool ok =
+      v->is_number_unsigned() || (v->is_number_integer() && v->get<std::int64_t>() >= 0);
+  if (!ok) fail(key, v->dump(), "an integer in [0, 2^64 - 1]");
+  out = v->get<std::uint64_t>();
+  return true;
+}
+
 bool JsonFields::text(const char* key, std::string& out, const std::string& allowed,
                       const std::function<bool(const std::string&)>& ok) {
   const nlohmann::json* v = find(key);

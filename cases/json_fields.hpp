@@ -7,6 +7,7 @@
 //   f.finish();   // throws for any key not read
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -26,6 +27,8 @@ class JsonFields {
               const std::function<bool(double)>& ok);
   bool integer(const char* key, long& out, const std::string& allowed,
                const std::function<bool(long)>& ok);
+  // Any JSON integer in [0, 2^64 - 1] (seeds).
+  bool unsigned_integer(const char* key, std::uint64_t& out);
   bool text(const char* key, std::string& out, const std::string& allowed,
             const std::function<bool(const std::string&)>& ok);
   bool boolean(const char* key, bool& out);

@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev libhdf5-dev nlohmann-json3-dev
   libgtest-dev libcli11-dev libbenchmark-dev
   python3 python3-h5py python3-numpy python3-matplotlib
+  hdf5-tools
   clang-format
 )
 

@@ -10,23 +10,19 @@ namespace ballast {
 
 using namespace h5;
 
-void write_clump_archive(const std::string& path, const ClumpArchiveHeader& h,
-                         const std::vector<ClumpTemplate>& clumps,
-                         const std::vector<ClumpShape>& shapes) {
+void write_clump_sample(hid_t file, const ClumpArchiveHeader& h,
+                        const std::vector<ClumpTemplate>& clumps,
+                        const std::vector<ClumpShape>& shapes) {
   if (shapes.size() != clumps.size()) {
     throw std::invalid_argument("clump archive: " + std::to_string(shapes.size()) + " shapes for " +
                                 std::to_string(clumps.size()) + " clumps");
   }
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become exceptions, not stderr noise
-  Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
-              "create '" + path + "'");
-
   const ClumpParams& q = h.params;
   string_attribute(file, "format", "ballast-clumps");
   number_attribute(file, "version", 1);
   string_attribute(file, "preset", h.preset);
   string_attribute(file, "source", h.source);
-  number_attribute(file, "seed", static_cast<long long>(h.seed));
+  number_attribute(file, "seed", h.seed);
   number_attribute(file, "count", static_cast<long long>(clumps.size()));
   string_attribute(file, "mass_mode", mass_mode_name(h.mass.mode));
   number_attribute(file, "density", h.mass.density);
@@ -107,6 +103,15 @@ void write_clump_archive(const std::string& path, const ClumpArchiveHeader& h,
     dataset(g, "volume_ratio", {m}, ratio, "1");
     dataset(g, "dimensions", {m, 3}, dims, "m");
   }
+}
+
+void write_clump_archive(const std::string& path, const ClumpArchiveHeader& h,
+                         const std::vector<ClumpTemplate>& clumps,
+                         const std::vector<ClumpShape>& shapes) {
+  quiet_errors();
+  Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+              "create '" + path + "'");
+  write_clump_sample(file, h, clumps, shapes);
   check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush '" + path + "'");
 }
 

@@ -20,6 +20,8 @@
 //          volume_ratio [M];  /shape/dimensions [M, 3] (a >= b >= c)
 #pragma once
 
+#include <hdf5.h>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -38,6 +40,12 @@ struct ClumpArchiveHeader {
   ClumpMassOptions mass;
   std::uint64_t seed = 0;
 };
+
+// Writes the layout above (attributes, balls/, clumps/, shape/) into `where`, a file's
+// root or a group: a study archive's /runs/<id>/clumps holds the same (docs/ARCHIVE.md).
+void write_clump_sample(hid_t where, const ClumpArchiveHeader& header,
+                        const std::vector<ClumpTemplate>& clumps,
+                        const std::vector<ClumpShape>& shapes);
 
 // Writes (overwrites) `path`. Throws std::runtime_error naming the file on failure.
 void write_clump_archive(const std::string& path, const ClumpArchiveHeader& header,

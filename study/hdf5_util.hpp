@@ -19,7 +19,10 @@ class Handle {
   }
   Handle(const Handle&) = delete;
   Handle& operator=(const Handle&) = delete;
-  ~Handle() { close_(id_); }
+  Handle(Handle&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = -1; }
+  ~Handle() {
+    if (id_ >= 0) close_(id_);
+  }
   operator hid_t() const { return id_; }
 
  private:
@@ -27,13 +30,27 @@ class Handle {
   herr_t (*close_)(hid_t);
 };
 
+// HDF5 prints its error stack to stderr unless told not to, and (in Debian's
+// thread-safe build) the setting is per thread: every entry point that may run on a
+// worker thread calls this first. Errors become exceptions instead.
+inline void quiet_errors() {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
+
 inline void check(herr_t status, const std::string& what) {
   if (status < 0) throw std::runtime_error("HDF5: cannot " + what);
 }
 
-inline void string_attribute(hid_t target, const char* name, const std::string& value) {
+// A fixed-length string type of `size` bytes holding UTF-8 (ASCII is UTF-8).
+inline Handle string_type(std::size_t size) {
   Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "copy string type");
-  check(H5Tset_size(type, value.empty() ? 1 : value.size()), "size string type");
+  check(H5Tset_size(type, size == 0 ? 1 : size), "size string type");
+  check(H5Tset_cset(type, H5T_CSET_UTF8), "set string type to UTF-8");
+  return type;
+}
+
+inline void string_attribute(hid_t target, const char* name, const std::string& value) {
+  Handle type = string_type(value.size());
   Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create scalar space");
   Handle attr(H5Acreate2(target, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
               std::string("create attribute ") + name);
@@ -41,14 +58,21 @@ inline void string_attribute(hid_t target, const char* name, const std::string& 
   check(H5Awrite(attr, type, data), std::string("write attribute ") + name);
 }
 
+// Doubles for floating-point values, unsigned 64-bit for unsigned ones (seeds),
+// signed 64-bit for the other integers.
 template <class T>
 void number_attribute(hid_t target, const char* name, T value) {
-  const hid_t type = std::is_floating_point_v<T> ? H5T_NATIVE_DOUBLE : H5T_NATIVE_LLONG;
+  const hid_t type = std::is_floating_point_v<T> ? H5T_NATIVE_DOUBLE
+                     : std::is_unsigned_v<T>     ? H5T_NATIVE_ULLONG
+                                                 : H5T_NATIVE_LLONG;
   Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create scalar space");
   Handle attr(H5Acreate2(target, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
               std::string("create attribute ") + name);
   if constexpr (std::is_floating_point_v<T>) {
     const double v = value;
+    check(H5Awrite(attr, type, &v), std::string("write attribute ") + name);
+  } else if constexpr (std::is_unsigned_v<T>) {
+    const unsigned long long v = value;
     check(H5Awrite(attr, type, &v), std::string("write attribute ") + name);
   } else {
     const long long v = static_cast<long long>(value);
@@ -70,6 +94,21 @@ void dataset(hid_t group, const char* name, const std::vector<hsize_t>& dims,
           std::string("write dataset ") + name);
   }
   string_attribute(set, "units", units);
+}
+
+// A scalar string dataset (texts too long or too free-form for an attribute: logs).
+inline void text_dataset(hid_t group, const char* name, const std::string& text) {
+  Handle type = string_type(text.size());
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create scalar space");
+  Handle set(H5Dcreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+             std::string("create dataset ") + name);
+  check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, text.empty() ? "" : text.c_str()),
+        std::string("write dataset ") + name);
+}
+
+inline Handle create_group(hid_t parent, const std::string& name) {
+  return Handle(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                "create group " + name);
 }
 
 }  // namespace ballast::h5

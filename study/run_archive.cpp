@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "study/clump_archive.hpp"
 #include "study/hdf5_util.hpp"
 
 namespace ballast {
@@ -26,8 +27,16 @@ void scalar_set(hid_t g, const char* name, const std::vector<double>& v, const c
 }
 
 Handle group(hid_t parent, const std::string& name) {
-  return Handle(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                H5Gclose, "create group " + name);
+  return create_group(parent, name);
+}
+
+// b - a per body; empty when one of them was not recorded (a run stopped before loading
+// has no peak).
+std::vector<Vec3> difference(const std::vector<Vec3>& b, const std::vector<Vec3>& a) {
+  if (a.size() != b.size()) return {};
+  std::vector<Vec3> d(a.size());
+  for (std::size_t k = 0; k < a.size(); ++k) d[k] = b[k] - a[k];
+  return d;
 }
 
 void write_contacts(hid_t parent, const char* name, const ContactSnapshot& c) {
@@ -113,6 +122,9 @@ void write_box_test_result(hid_t run, const BoxTestResult& r) {
     vec3_set(p, "position_start", r.position_start, "m");
     vec3_set(p, "position_peak", r.position_peak, "m");
     vec3_set(p, "position_end", r.position_end, "m");
+    // Figs 15-17 draw these: displacement from the start of loading.
+    vec3_set(p, "displacement_peak", difference(r.position_peak, r.position_start), "m");
+    vec3_set(p, "displacement_end", difference(r.position_end, r.position_start), "m");
     scalar_set(p, "rotation_loading", r.rotation_deg_loading, "deg");
     scalar_set(p, "rotation_unloading", r.rotation_deg_unloading, "deg");
     scalar_set(p, "rotation_cycle", r.rotation_deg_cycle, "deg");
@@ -124,11 +136,19 @@ void write_box_test_result(hid_t run, const BoxTestResult& r) {
     scalar_set(p, "sphere_heights", r.sphere_heights, "m");
     scalar_set(p, "sphere_porosity", r.porosity_spheres, "1");
   }
+  if (r.clumps) {
+    // The clump templates in `ballast clump -o`'s layout (Fig. 7 from a run).
+    const ClumpSampleRecord& c = *r.clumps;
+    Handle g = group(run, "clumps");
+    write_clump_sample(g,
+                       {c.shape, "box test scene '" + r.scene_name + "'", c.params, c.mass, c.seed},
+                       c.templates, c.shapes);
+  }
 }
 
 void write_run_file(const std::string& path, const std::string& scene_json,
                     const BoxTestResult& r) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  quiet_errors();
   Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
               "create " + path);
   string_attribute(file, "format", "ballast-run");

@@ -13,8 +13,12 @@
 //                  force [C] (ball–ball contacts: centres of the two balls, |F|)
 //   series/{time,target_force,sleeper_force,settlement}   load–deformation (Fig 18)
 //   particles/{position_start,position_peak,position_end} [N,3],
+//             displacement_{peak,end} [N,3] (from position_start; peak empty when
+//             the run stopped before loading),
 //             rotation_{loading,unloading,cycle} [N] (deg), shape_index [N]
 //   porosity/{sphere_heights,sphere_porosity}
+//   clumps/        clump samples only: the templates, as `ballast clump -o` writes
+//                  them (study/clump_archive.hpp); body i is template shape_index[i]
 #pragma once
 
 #include <hdf5.h>
@@ -30,7 +34,6 @@ void write_box_test_result(hid_t group, const BoxTestResult& r);
 
 // A file holding one run: the scene file's text as attribute "scene_json" on the
 // root, the result under /run.
-void write_run_file(const std::string& path, const std::string& scene_json,
-                    const BoxTestResult& r);
+void write_run_file(const std::string& path, const std::string& scene_json, const BoxTestResult& r);
 
 }  // namespace ballast

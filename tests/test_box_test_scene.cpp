@@ -87,3 +87,14 @@ TEST(BoxTestScene, BadInputNamesPathValueAndAllowed) {
   const std::string sphere_clump = error_of({{"particles", {{"clump", {{"p", 0.5}}}}}});
   EXPECT_NE(sphere_clump.find("/particles/clump"), std::string::npos) << sphere_clump;
 }
+
+TEST(BoxTestScene, SeedTakesAll64Bits) {
+  // A study run's seed is a 64-bit hash (docs/STUDY.md): above INT64_MAX too.
+  const json top = json::parse(R"({"particles": {"seed": 18446744073709551615}})");
+  EXPECT_EQ(parse_box_test_scene(top).seed, 18446744073709551615ULL);
+  const std::string negative = error_of({{"particles", {{"seed", -1}}}});
+  EXPECT_NE(negative.find("/particles/seed = -1"), std::string::npos) << negative;
+  EXPECT_NE(negative.find("[0, 2^64 - 1]"), std::string::npos) << negative;
+  const std::string fraction = error_of({{"particles", {{"seed", 1.5}}}});
+  EXPECT_NE(fraction.find("/particles/seed = 1.5"), std::string::npos) << fraction;
+}

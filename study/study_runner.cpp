@@ -1,0 +1,265 @@
+#include "study/study_runner.hpp"
+
+#include <omp.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "cases/box_test_load.hpp"
+#include "study/build_info.hpp"
+#include "study/run_log.hpp"
+#include "study/stop_signals.hpp"
+#include "study/study_json.hpp"
+#include "study/study_progress.hpp"
+#include "study/study_scene.hpp"
+#include "study/study_store.hpp"
+#include "study/study_summary.hpp"
+
+namespace ballast {
+
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+struct PreparedRun {
+  const RunSpec* spec = nullptr;
+  BoxTestScene scene;
+  std::string scene_json;
+};
+
+// The study file, its base scene and every run's scene, all checked: whatever is wrong
+// is thrown (StudyError) here, before an archive exists.
+struct PreparedStudy {
+  StudySpec spec;
+  std::string study_text, scene_text;
+  json base_scene;
+  std::vector<PreparedRun> runs;  // every run of the study, in study order
+};
+
+PreparedStudy prepare(const std::string& study_file) {
+  PreparedStudy p;
+  p.study_text = read_study_text(study_file);
+  p.spec = load_study_file(study_file);
+  const std::string where = "scene = \"" + p.spec.scene + "\"";
+  std::ifstream in(p.spec.scene_path);
+  if (!in) {
+    throw StudyError(study_file, "/scene",
+                     where + " cannot be read (looked for " + p.spec.scene_path + ")",
+                     "a scene file, relative to the study file's folder");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  p.scene_text = text.str();
+  try {
+    p.base_scene = json::parse(p.scene_text);
+    parse_box_test_scene(p.base_scene);
+  } catch (const json::parse_error& e) {
+    throw StudyError(study_file, "/scene", where + " is not valid JSON: " + e.what(),
+                     "a scene file (docs/BOX_TEST.md)");
+  } catch (const SetupError& e) {
+    throw StudyError(study_file, "/scene", where + ": " + e.what(), "");
+  }
+  p.runs.reserve(p.spec.runs.size());
+  for (const RunSpec& r : p.spec.runs) {
+    const json scene = run_scene_json(p.base_scene, r);
+    p.runs.push_back({&r, parse_run_scene(scene, r, study_file, p.spec.scene), scene.dump(2)});
+  }
+  return p;
+}
+
+// One run from start to end. Whatever it throws is its failure, recorded with the
+// message; the study goes on.
+RunRecord execute(const PreparedRun& run, int threads, ProgressBoard& board) {
+  RunRecord r;
+  r.spec = *run.spec;
+  r.threads = threads;
+  r.git_revision = kGitRevision;
+  r.scene_json = run.scene_json;
+  r.started = iso8601_utc(std::chrono::system_clock::now());
+  const auto start = Clock::now();
+  RunLog log([&](const std::string& line) { board.log_line(*run.spec, line); });
+  board.started(*run.spec, threads);
+  try {
+    r.result = run_box_test(run.scene, &log.stream());
+    r.ok = true;
+  } catch (const SimulationError& e) {
+    r.message = std::string("blew up: ") + e.what();
+  } catch (const SetupError& e) {
+    r.message = std::string("refused by the box test: ") + e.what();
+  } catch (const std::exception& e) {
+    r.message = std::string("error: ") + e.what();
+  }
+  r.finished = iso8601_utc(std::chrono::system_clock::now());
+  r.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  r.log = log.text();
+  return r;
+}
+
+void print_dry_run(const PreparedStudy& p, const std::vector<const PreparedRun*>& todo,
+                   const Shard& shard, const Parallelism& plan) {
+  std::cout << "study '" << p.spec.name << "': " << p.spec.runs.size() << " runs, scene "
+            << p.spec.scene_path << "; shard " << shard.text() << ": " << todo.size() << " runs, "
+            << plan.jobs << " side by side x " << plan.threads << " thread(s)\n";
+  for (const PreparedRun* r : todo) {
+    std::cout << "  " << r->spec->index << "  " << r->spec->id << "  seed " << r->spec->seed << "  "
+              << r->spec->params.dump() << "\n";
+  }
+  std::cout << "dry run: every scene checked, nothing run or written\n";
+}
+
+}  // namespace
+
+int run_study(const StudyOptions& o) {
+  if (o.retry_failed && !o.resume) {
+    throw SetupError(
+        "invalid --retry-failed without --resume (allowed: with --resume, to run "
+        "the failed runs of an archive again)");
+  }
+  const Shard shard = parse_shard(o.shard);
+  const PreparedStudy p = prepare(o.study_file);
+  std::vector<const PreparedRun*> in_shard;
+  for (const PreparedRun& r : p.runs) {
+    if (shard.contains(r.spec->index)) in_shard.push_back(&r);
+  }
+  const int cores = omp_get_max_threads();  // OMP_NUM_THREADS, else every core
+  if (o.dry_run) {
+    print_dry_run(p, in_shard, shard, plan_parallelism(cores, in_shard.size(), o.jobs, o.threads));
+    return 0;
+  }
+
+  const bool live = o.progress == "live" || (o.progress == "auto" && isatty(STDOUT_FILENO));
+  std::mutex early_mutex;
+  ProgressBoard* board_ptr = nullptr;
+  // Until the board exists, reports go straight to stdout.
+  const auto report = [&](const std::string& text) {
+    if (board_ptr) {
+      board_ptr->note(text);
+    } else {
+      std::lock_guard<std::mutex> lock(early_mutex);
+      std::cout << text << "\n" << std::flush;
+    }
+  };
+  const StudyArchiveHeader header =
+      make_archive_header(p.spec, p.study_text, p.scene_text, p.base_scene, shard);
+  const std::filesystem::path folder = std::filesystem::path(o.output).parent_path();
+  if (!folder.empty()) std::filesystem::create_directories(folder);
+  std::unique_ptr<StudyStore> store = o.resume ? StudyStore::resume(o.output, header, report)
+                                               : StudyStore::create(o.output, header, report);
+  std::vector<const PreparedRun*> todo;
+  std::size_t archived = 0, retried = 0;
+  for (const PreparedRun* r : in_shard) {
+    const auto it = store->recorded().find(r->spec->id);
+    const bool found = it != store->recorded().end();
+    const bool retry = found && o.retry_failed && !it->second;
+    archived += found ? 1 : 0;
+    retried += retry ? 1 : 0;
+    if (!found || retry) todo.push_back(r);
+  }
+  std::size_t other_builds = 0;  // runs another build made: results may not match ours
+  for (const auto& [id, revision] : store->revisions()) other_builds += revision != kGitRevision;
+  if (other_builds > 0) {
+    report("note: " + std::to_string(other_builds) + " runs in " + o.output +
+           " were made by another build (git_revision differs from " + kGitRevision +
+           "): each run's git_revision attribute says which");
+  }
+  const Parallelism plan = plan_parallelism(cores, todo.size(), o.jobs, o.threads);
+  std::cout << "study '" << p.spec.name << "' (" << p.spec.runs.size() << " runs, shard "
+            << shard.text() << ": " << in_shard.size() << "): " << archived << " in the archive"
+            << (retried ? " (" + std::to_string(retried) + " failed, run again)" : "") << ", "
+            << todo.size() << " to run, " << plan.jobs << " side by side x " << plan.threads
+            << " thread(s) on " << cores << " core(s); " << kProgramName << " " << kProgramVersion
+            << " (" << kGitRevision << ")\n"
+            << std::flush;
+
+  ProgressBoard board(std::cout, live, todo.size(), archived - retried, plan.jobs);
+  board_ptr = &board;
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  std::atomic<bool> stop{false}, done{false};
+  {
+    StopSignals signals;
+    // Watches the signals and redraws the live board. SIGINT once: no new run starts,
+    // those in flight finish. SIGTERM, or SIGINT again: exit now, once no write is in
+    // progress (the archive is closed between writes), losing only the runs in flight.
+    std::thread monitor([&] {
+      int seen = 0;
+      auto drawn = Clock::now();
+      while (!done.load()) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        const int n = StopSignals::count();
+        if (n > seen) {
+          seen = n;
+          const int sig = StopSignals::last();
+          if (sig == SIGINT && n == 1) {
+            board.note("interrupted (SIGINT): no new run starts; the " +
+                       std::to_string(board.in_flight()) +
+                       " in flight finish and are kept (Ctrl-C again abandons them)");
+          } else {
+            board.note(std::string("interrupted (") + (sig == SIGINT ? "SIGINT" : "SIGTERM") +
+                       "): abandoning the " + std::to_string(board.in_flight()) +
+                       " runs in flight; every finished run is in " + o.output +
+                       ": run the same command with --resume to finish the study");
+            std::lock_guard<std::mutex> lock(store->write_mutex());
+            std::cout.flush();
+            std::fflush(nullptr);
+            std::_Exit(128 + sig);
+          }
+        }
+        if (live && Clock::now() - drawn > std::chrono::milliseconds(500)) {
+          board.redraw();
+          drawn = Clock::now();
+        }
+      }
+    });
+
+    omp_set_max_active_levels(2);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(plan.jobs)
+    for (long k = 0; k < static_cast<long>(todo.size()); ++k) {
+      if (stop.load() || StopSignals::count() > 0) continue;
+      omp_set_num_threads(plan.threads);  // this run's engine: its own inner team
+      try {
+        const RunRecord r = execute(*todo[static_cast<std::size_t>(k)], plan.threads, board);
+        store->record(r);
+        board.finished(r);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+        stop.store(true);
+      }
+    }
+    done.store(true);
+    monitor.join();
+  }
+  board.close();
+  board_ptr = nullptr;
+  if (failure) std::rethrow_exception(failure);
+  if (StopSignals::count() > 0) {
+    std::cout << "interrupted (SIGINT): the finished runs are in " << o.output
+              << "; run the same command with --resume to finish the study\n";
+    return 128 + SIGINT;
+  }
+  store->finish();
+  const std::vector<SummaryRow> rows = read_summary(o.output);
+  std::cout << "\n";
+  print_summary(std::cout, rows);
+  std::size_t failed = 0;
+  for (const SummaryRow& r : rows) failed += r.ok ? 0 : 1;
+  std::cout << "\n"
+            << o.output << ": " << rows.size() << " of " << p.spec.runs.size()
+            << " runs of the study" << (shard.whole() ? "" : " (shard " + shard.text() + ")")
+            << ", " << failed << " failed\n";
+  return failed > 0 ? kStudyExitRunsFailed : 0;
+}
+
+}  // namespace ballast

@@ -1,0 +1,437 @@
+#!/usr/bin/python3
+"""End-to-end checks of `ballast study` and `ballast merge` (docs/ARCHIVE.md).
+
+Run by ctest with the path of the ballast binary as the only argument:
+    /usr/bin/python3 tests/cli/test_study.py build/study/ballast
+
+Every study here is tests/data/study/mixed.json (four runs of about a second each on
+tiny.json, one of which blows up) or a variant of it. One uninterrupted run of it, on
+2 jobs x 1 thread, is the reference every other way of running it must equal, bit for
+bit apart from timings.
+"""
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from archive_compare import differences, run_differences  # noqa: E402
+
+BALLAST = None
+HERE = os.path.dirname(os.path.abspath(__file__))
+DATA = os.path.join(HERE, "..", "data", "study")
+MIXED = os.path.join(DATA, "mixed.json")
+TINY = os.path.join(DATA, "tiny.json")
+IDS = ["spheres-r1", "huge-r1", "spheres_dt-r1", "T2S1-r1"]
+TMP = None
+REFERENCE = None  # (archive path, completed process)
+
+
+def ballast(*args, timeout=300):
+    return subprocess.run([BALLAST, *args], capture_output=True, text=True, timeout=timeout)
+
+
+def study(*args):
+    return ballast("study", *args, "--progress", "plain")
+
+
+def text(value):
+    return value.decode() if isinstance(value, bytes) else value
+
+
+def setUpModule():
+    global TMP, REFERENCE
+    TMP = tempfile.TemporaryDirectory()
+    path = os.path.join(TMP.name, "reference.h5")
+    REFERENCE = (path, study(MIXED, "-o", path, "--jobs", "2", "--threads", "1"))
+
+
+def tearDownModule():
+    TMP.cleanup()
+
+
+def scratch():
+    return tempfile.mkdtemp(dir=TMP.name)
+
+
+def write_study(folder, change):
+    """mixed.json with `change` applied to its JSON, next to a copy of tiny.json."""
+    with open(MIXED) as f:
+        s = json.load(f)
+    change(s)
+    shutil.copy(TINY, os.path.join(folder, "tiny.json"))
+    path = os.path.join(folder, "study.json")
+    with open(path, "w") as f:
+        json.dump(s, f)
+    return path
+
+
+class Archive(unittest.TestCase):
+    """What one uninterrupted study leaves."""
+
+    def setUp(self):
+        self.path, self.result = REFERENCE
+
+    def test_some_runs_failed_so_exit_code_is_3_and_the_summary_lists_them(self):
+        self.assertEqual(self.result.returncode, 3, self.result.stderr)
+        out = self.result.stdout
+        for run in IDS:
+            self.assertIn(run, out)
+        self.assertIn("failed runs:", out)
+        self.assertIn("huge-r1: blew up", out)
+        self.assertIn("4 of 4 runs of the study, 1 failed", out)
+
+    def test_root_says_which_study_and_program_made_it(self):
+        with h5py.File(self.path, "r") as f:
+            a = f.attrs
+            self.assertEqual(text(a["format"]), "ballast-study")
+            self.assertEqual(a["format_version"], 1)
+            self.assertEqual(text(a["study_name"]), "mixed")
+            with open(MIXED, "rb") as s:
+                self.assertEqual(a["study_json"], s.read())  # verbatim
+            with open(TINY, "rb") as s:
+                self.assertEqual(a["scene_json"], s.read())
+            self.assertEqual(text(a["scene_path"]), "tiny.json")
+            self.assertEqual(a["study_seed"], 11)
+            self.assertEqual(a["run_count"], 4)
+            self.assertEqual((a["shard_index"], a["shard_count"]), (1, 1))
+            self.assertRegex(text(a["fingerprint"]), r"^[0-9a-f]{16}$")
+            self.assertRegex(text(a["git_revision"]), r"^([0-9a-f]{40}(-dirty)?|unknown)$")
+            self.assertRegex(text(a["program_version"]), r"^\d+\.\d+")
+            runs = json.loads(f["study_runs"][()])
+            self.assertEqual([r["id"] for r in runs], IDS)
+            for r in runs:
+                g = f["runs"][r["id"]]
+                self.assertEqual(int(g.attrs["seed"]), int(r["seed"]))  # full 64 bits
+                self.assertEqual(g.attrs["index"], r["index"])
+                self.assertEqual(json.loads(g.attrs["params"]), r["params"])
+
+    def test_a_run_that_blows_up_is_recorded_as_failed_and_the_study_goes_on(self):
+        with h5py.File(self.path, "r") as f:
+            g = f["runs/huge-r1"]
+            self.assertEqual(text(g.attrs["status"]), "failed")
+            self.assertIn("blew up", text(g.attrs["message"]))
+            self.assertIn("exceeds max_speed", text(g.attrs["message"]))
+            self.assertNotIn("particles", g)
+            self.assertIn("stage 2:", text(g["log"][()]))
+            # The runs after it (indices 2 and 3) ran and are ok.
+            for run in ("spheres_dt-r1", "T2S1-r1"):
+                self.assertEqual(text(f["runs"][run].attrs["status"]), "ok")
+                self.assertEqual(text(f["runs"][run].attrs["message"]), "")
+
+    def test_an_ok_run_holds_the_measurements_and_displacements(self):
+        with h5py.File(self.path, "r") as f:
+            g = f["runs/spheres-r1"]
+            self.assertEqual(g.attrs["loaded"], 1)
+            p = g["particles"]
+            start = p["position_start"][:]
+            self.assertEqual(start.shape, (40, 3))
+            np.testing.assert_array_equal(p["displacement_end"][:], p["position_end"][:] - start)
+            np.testing.assert_array_equal(p["displacement_peak"][:], p["position_peak"][:] - start)
+            self.assertEqual(text(p["displacement_end"].attrs["units"]), "m")
+            n = len(g["series/time"])
+            self.assertGreater(n, 5)
+            for s in ("target_force", "sleeper_force", "settlement"):
+                self.assertEqual(len(g["series"][s]), n)
+            for c in ("before", "peak", "after"):
+                self.assertIn("force", g["contacts"][c])
+            self.assertNotIn("clumps", g)  # spheres: no clumps group
+            self.assertIn("stage 4:", text(g["log"][()]))
+
+    def test_a_clump_run_holds_the_templates_ballast_clump_generates_with_its_seed(self):
+        with h5py.File(self.path, "r") as f:
+            g = f["runs/T2S1-r1"]
+            seed = int(g.attrs["seed"])
+            c = g["clumps"]
+            self.assertEqual(text(c.attrs["format"]), "ballast-clumps")
+            self.assertEqual(int(c["clumps/ball_count"][:].sum()), g.attrs["balls"])
+            self.assertEqual(len(c["clumps/first_ball"]), g.attrs["bodies"])
+            np.testing.assert_array_equal(g["particles/shape_index"][:], np.arange(40))
+            made = os.path.join(scratch(), "clumps.h5")
+            r = ballast("clump", "--preset", "table2/sample1", "--count", "40", "--seed",
+                        str(seed), "--mass", "paper", "--threads", "1", "-o", made)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with h5py.File(made, "r") as m:
+                # Same datasets, same numbers; the attributes name their sources.
+                self.assertEqual(differences(m, c, skip_attributes=set(m.attrs) | set(c.attrs)),
+                                 [])
+
+    def test_a_run_group_equals_ballast_run_of_the_scene_it_records(self):
+        single = os.path.join(scratch(), "single.h5")
+        with h5py.File(self.path, "r") as f:
+            scene = os.path.join(os.path.dirname(single), "scene.json")
+            with open(scene, "wb") as s:
+                s.write(f["runs/T2S1-r1"].attrs["scene_json"])
+        r = ballast("run", scene, "-o", single, "--threads", "1")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        study_only = {"id", "index", "sample", "params", "seed", "replicate", "status",
+                      "message", "git_revision", "scene_json"}
+        with h5py.File(self.path, "r") as f, h5py.File(single, "r") as s:
+            self.assertEqual(differences(f["runs/T2S1-r1"], s["run"], skip_attributes=study_only),
+                             [])
+
+    @unittest.skipUnless(shutil.which("h5dump"), "h5dump (hdf5-tools) not installed")
+    def test_h5dump_reads_the_archive(self):
+        r = subprocess.run(["h5dump", "-a", "/runs/huge-r1/status", self.path],
+                           capture_output=True, text=True)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn('"failed"', r.stdout)
+
+
+class Parallelism(unittest.TestCase):
+    def test_results_do_not_depend_on_jobs_or_threads(self):
+        path = os.path.join(scratch(), "serial.h5")
+        # Passive waiting: on a machine busy with other work, threads spinning at the
+        # engine's barriers slow a 2-thread run a hundredfold (the results are the same).
+        r = subprocess.run([BALLAST, "study", MIXED, "-o", path, "--jobs", "1", "--threads", "2",
+                            "--progress", "plain"], capture_output=True, text=True, timeout=300,
+                           env=dict(os.environ, OMP_WAIT_POLICY="passive"))
+        self.assertEqual(r.returncode, 3, r.stderr)
+        self.assertIn("1 side by side x 2 thread(s)", r.stdout)
+        self.assertEqual(run_differences(REFERENCE[0], path), [])
+        with h5py.File(path, "r") as f:
+            self.assertEqual(f["runs/T2S1-r1"].attrs["threads"], 2)
+
+
+class Interruption(unittest.TestCase):
+    """A study stopped part-way, then completed with --resume, equals the reference."""
+
+    def start(self, path, wait_for):
+        """Starts the study on one job; returns it once a line starting with `wait_for`
+        has been printed."""
+        p = subprocess.Popen([BALLAST, "study", MIXED, "-o", path, "--jobs", "1", "--threads",
+                              "1", "--progress", "plain"], stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True)
+        lines = []
+        for line in p.stdout:
+            lines.append(line)
+            if line.startswith(wait_for):
+                break
+        return p, lines
+
+    def resume_and_compare(self, path):
+        r = study(MIXED, "-o", path, "--resume", "--jobs", "2", "--threads", "1")
+        self.assertEqual(r.returncode, 3, r.stdout + r.stderr)
+        self.assertEqual(run_differences(REFERENCE[0], path), [])
+        self.assertFalse(os.path.exists(path + ".parts"))  # complete: parts removed
+        return r
+
+    def test_sigkill_loses_only_the_run_in_flight_and_resume_completes_the_study(self):
+        path = os.path.join(scratch(), "killed.h5")
+        p, _ = self.start(path, "ok ")
+        p.kill()
+        p.communicate()
+        # The archive is closed between writes: readable at once, with the finished runs.
+        with h5py.File(path, "r") as f:
+            done = list(f["runs"])
+        self.assertIn("spheres-r1", done)
+        self.assertLess(len(done), 4)
+        r = self.resume_and_compare(path)
+        self.assertIn(f"{len(done)} in the archive, {4 - len(done)} to run", r.stdout)
+
+    def test_a_damaged_archive_is_moved_aside_and_rebuilt_from_the_parts(self):
+        path = os.path.join(scratch(), "damaged.h5")
+        p, _ = self.start(path, "ok ")
+        p.kill()
+        p.communicate()
+        # As if killed in the middle of a write: the file is cut short.
+        size = os.path.getsize(path)
+        with open(path, "r+b") as f:
+            f.truncate(size // 2)
+        r = self.resume_and_compare(path)
+        self.assertIn("is damaged", r.stdout)
+        self.assertIn("moved to " + path + ".damaged", r.stdout)
+        self.assertEqual(os.path.getsize(path + ".damaged"), size // 2)  # kept, untouched
+
+    def test_sigterm_abandons_the_run_in_flight_and_says_how_to_finish(self):
+        path = os.path.join(scratch(), "term.h5")
+        p, _ = self.start(path, "ok ")
+        p.send_signal(signal.SIGTERM)
+        out, _ = p.communicate()
+        self.assertEqual(p.returncode, 128 + signal.SIGTERM)
+        self.assertIn("--resume", out)
+        with h5py.File(path, "r") as f:
+            self.assertIn("spheres-r1", f["runs"])
+        self.resume_and_compare(path)
+
+    def test_sigint_lets_the_run_in_flight_finish_and_starts_no_other(self):
+        path = os.path.join(scratch(), "int.h5")
+        p, _ = self.start(path, "start ")
+        p.send_signal(signal.SIGINT)
+        out, _ = p.communicate()
+        self.assertEqual(p.returncode, 128 + signal.SIGINT, out)
+        self.assertIn("--resume", out)
+        with h5py.File(path, "r") as f:
+            self.assertEqual(list(f["runs"]), ["spheres-r1"])
+            self.assertEqual(text(f["runs/spheres-r1"].attrs["status"]), "ok")
+        self.resume_and_compare(path)
+
+
+class Refusals(unittest.TestCase):
+    """An archive in the way is reported, never overwritten (exit 2)."""
+
+    def copy_of_reference(self):
+        path = os.path.join(scratch(), "copy.h5")
+        shutil.copy(REFERENCE[0], path)
+        with open(path, "rb") as f:
+            return path, f.read()
+
+    def assert_refused(self, r, path, before, *phrases):
+        self.assertEqual(r.returncode, 2, r.stdout + r.stderr)
+        for phrase in phrases:
+            self.assertIn(phrase, r.stderr)
+        with open(path, "rb") as f:
+            self.assertEqual(f.read(), before)
+
+    def test_an_existing_archive_without_resume(self):
+        path, before = self.copy_of_reference()
+        self.assert_refused(study(MIXED, "-o", path), path, before, "already exists",
+                            "--resume")
+
+    def test_resuming_into_another_studys_archive(self):
+        path, before = self.copy_of_reference()
+        other = write_study(scratch(), lambda s: s.update(seed=12))
+        self.assert_refused(study(other, "-o", path, "--resume"), path, before, "another study")
+
+    def test_resuming_another_shard(self):
+        path, before = self.copy_of_reference()
+        self.assert_refused(study(MIXED, "-o", path, "--resume", "--shard", "1/2"), path, before,
+                            "holds shard 1/1", "--shard 1/1")
+
+
+class Shards(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = scratch()
+        cls.shards = [os.path.join(cls.dir, f"shard{k}.h5") for k in (1, 2)]
+        for k, path in zip((1, 2), cls.shards):
+            r = study(MIXED, "-o", path, "--shard", f"{k}/2", "--jobs", "1")
+            assert r.returncode in (0, 3), r.stderr
+
+    def test_a_shard_holds_the_runs_whose_index_modulo_n_is_k_minus_1(self):
+        with h5py.File(self.shards[0], "r") as f:
+            self.assertEqual(sorted(f["runs"]), sorted(["spheres-r1", "spheres_dt-r1"]))
+            self.assertEqual((f.attrs["shard_index"], f.attrs["shard_count"]), (1, 2))
+            self.assertEqual(f.attrs["run_count"], 4)
+
+    def test_merged_shards_equal_the_unsharded_study(self):
+        out = os.path.join(scratch(), "merged.h5")
+        r = ballast("merge", *self.shards, "-o", out)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertEqual(run_differences(REFERENCE[0], out), [])
+        with h5py.File(out, "r") as f, h5py.File(REFERENCE[0], "r") as ref:
+            self.assertEqual((f.attrs["shard_index"], f.attrs["shard_count"]), (1, 1))
+            self.assertEqual(text(f.attrs["merged_from"]).split(), self.shards)
+            self.assertEqual(f.attrs["fingerprint"], ref.attrs["fingerprint"])
+
+    def test_an_incomplete_merge_names_the_missing_runs_and_resume_completes_it(self):
+        out = os.path.join(scratch(), "half.h5")
+        r = ballast("merge", self.shards[1], "-o", out)
+        self.assertEqual(r.returncode, 4, r.stdout + r.stderr)
+        self.assertIn("2 runs missing: spheres-r1 spheres_dt-r1", r.stdout)
+        self.resume = study(MIXED, "-o", out, "--resume", "--jobs", "1")
+        self.assertEqual(self.resume.returncode, 3, self.resume.stdout + self.resume.stderr)
+        self.assertEqual(run_differences(REFERENCE[0], out), [])
+
+    def test_merge_refuses_shards_of_another_study(self):
+        d = scratch()
+        other = write_study(d, lambda s: s.update(seed=12))
+        path = os.path.join(d, "other.h5")
+        study(other, "-o", path, "--shard", "1/4")
+        out = os.path.join(d, "merged.h5")
+        r = ballast("merge", self.shards[0], path, "-o", out)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("holds another study", r.stderr)
+        self.assertFalse(os.path.exists(out))
+
+    def test_merge_refuses_a_run_given_twice(self):
+        out = os.path.join(scratch(), "twice.h5")
+        r = ballast("merge", self.shards[0], self.shards[0], "-o", out)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("is in both", r.stderr)
+        self.assertFalse(os.path.exists(out))
+
+    def test_slurm_script_runs_the_shards_then_merges_them(self):
+        d = scratch()
+        env = dict(os.environ, PATH=os.path.join(HERE, "fake_slurm") + os.pathsep + os.environ["PATH"],
+                   FAKE_SBATCH_LOG=os.path.join(d, "sbatch.log"), BALLAST=BALLAST)
+        script = os.path.join(HERE, "..", "..", "scripts", "slurm_study.sh")
+        r = subprocess.run([script, MIXED, d, "2", "--cpus-per-task=1"], capture_output=True,
+                           text=True, env=env, timeout=300)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        with open(os.path.join(d, "sbatch.log")) as f:
+            jobs = f.read().splitlines()
+        self.assertIn("--array=1-2", jobs[0])
+        self.assertIn("--dependency=afterany:1001", jobs[1])
+        self.assertEqual(run_differences(REFERENCE[0], os.path.join(d, "mixed.h5")), [])
+
+
+class BadInput(unittest.TestCase):
+    """Refused before anything runs: exit 2, the JSON path, the value, what is allowed,
+    and no archive."""
+
+    def assert_refused(self, study_file, *phrases, extra=()):
+        d = os.path.dirname(study_file)
+        out = os.path.join(d, "out.h5")
+        r = study(study_file, "-o", out, *extra)
+        self.assertEqual(r.returncode, 2, r.stdout + r.stderr)
+        for phrase in phrases:
+            self.assertIn(phrase, r.stderr)
+        self.assertFalse(os.path.exists(out))
+        self.assertFalse(os.path.exists(out + ".parts"))
+
+    def test_unknown_key_in_the_study(self):
+        f = write_study(scratch(), lambda s: s.update(sede=1))
+        self.assert_refused(f, "at /sede", 'unknown key "sede"', "allowed: name, scene")
+
+    def test_wrong_type_in_the_study(self):
+        f = write_study(scratch(), lambda s: s.update(seed="eleven"))
+        self.assert_refused(f, "at /seed", 'seed = "eleven"', "an unsigned integer")
+
+    def test_out_of_range_value_in_the_study(self):
+        f = write_study(scratch(),
+                        lambda s: s["matrix"].update(axes={"local_damping": [0.5, 1.5]}))
+        self.assert_refused(f, "at /matrix/axes/local_damping/1", "local_damping = 1.5",
+                            "a number in [0, 1)")
+
+    def test_value_the_scene_refuses_once_a_run_applies_it(self):
+        # The study allows gravity_factor >= 1; the scene allows at most 1000.
+        f = write_study(scratch(),
+                        lambda s: s["matrix"].update(axes={"gravity_factor": [10, 2000]}))
+        self.assert_refused(f, "run 'spheres-gravity_factor=2000.0-r1'",
+                            "/preparation/gravity_factor = 2000.0", "in [1, 1000]")
+
+    def test_unknown_key_in_the_base_scene(self):
+        d = scratch()
+        f = write_study(d, lambda s: None)
+        with open(os.path.join(d, "tiny.json")) as t:
+            scene = json.load(t)
+        scene["sleeper"]["lenght"] = 0.1
+        with open(os.path.join(d, "tiny.json"), "w") as t:
+            json.dump(scene, t)
+        self.assert_refused(f, "at /scene", "unknown key /sleeper/lenght")
+
+    def test_missing_scene_file(self):
+        f = write_study(scratch(), lambda s: s.update(scene="nowhere.json"))
+        self.assert_refused(f, 'scene = "nowhere.json" cannot be read')
+
+    def test_bad_shard(self):
+        self.assert_refused(write_study(scratch(), lambda s: None), '--shard = "3/2"',
+                            "1 <= K <= N", extra=("--shard", "3/2"))
+
+    def test_missing_output(self):
+        r = study(MIXED)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("missing -o", r.stderr)
+
+
+if __name__ == "__main__":
+    BALLAST = os.path.abspath(sys.argv.pop(1))
+    unittest.main(verbosity=2)
