@@ -43,6 +43,7 @@ SimulationSettings settings_for(const BoxTestScene& s, double bound) {
   st.gravity = Vec3::Zero();
   st.local_damping = s.local_damping;
   st.dt_safety = s.dt_safety;
+  st.fixed_dt = s.fixed_dt;
   st.rotation = s.rotation;
   return st;
 }
@@ -223,8 +224,14 @@ PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
       const double u1 = unit_uniform(rng()), u2 = unit_uniform(rng()), u3 = unit_uniform(rng());
       const Quat turn = uniform_rotation(u1, u2, u3);
       const Vec3 centre = out.sim.bodies().position[k];
-      sim.add_clump(centre + turn * t.generation_centre, turn * Quat(t.generation_rotation), t,
-                    mat);
+      // The clump grows from 1/factor of its size about its centre of mass: place the
+      // centre of mass so that the shrunk clump's generation origin (its virtual
+      // sphere's centre) sits on the sphere's centre, where the shrunk clump lies
+      // inside the sphere and so touches nothing. Placing it for full size instead
+      // put shrunk clumps up to (1 - 1/factor)·|generation centre| off their spheres,
+      // into their neighbours.
+      sim.add_clump(centre + (1.0 / p.virtual_sphere_factor) * (turn * t.generation_centre),
+                    turn * Quat(t.generation_rotation), t, mat);
       balls += t.ball_count();
     }
     if (log)

@@ -35,8 +35,10 @@ void read_particles(const nlohmann::json& j, BoxTestScene& s) {
   const nlohmann::json& clump = f.object("clump");
   f.finish();
   if (s.shape == "spheres") {
-    if (!clump.empty()) throw SetupError("invalid /particles/clump for shape \"spheres\" (allowed: "
-                                         "only with a clump preset as shape)");
+    if (!clump.empty())
+      throw SetupError(
+          "invalid /particles/clump for shape \"spheres\" (allowed: "
+          "only with a clump preset as shape)");
     s.clumps.reset();
     return;
   }
@@ -52,9 +54,8 @@ void read_particles(const nlohmann::json& j, BoxTestScene& s) {
   c.integer("edge_balls", edges, ">= 0", whole);
   c.number("virtual_sphere_factor", p.virtual_sphere_factor, "> 0", positive);
   std::string adjacency = adjacency_name(p.adjacency);
-  c.text("adjacency", adjacency, "\"hull\" or \"face_to_diagonal\"", [](const std::string& v) {
-    return v == "hull" || v == "face_to_diagonal";
-  });
+  c.text("adjacency", adjacency, "\"hull\" or \"face_to_diagonal\"",
+         [](const std::string& v) { return v == "hull" || v == "face_to_diagonal"; });
   c.finish();
   p.directions = static_cast<int>(directions);
   p.balls_per_direction = static_cast<int>(balls);
@@ -90,6 +91,8 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& j) {
 
   JsonFields n(top.object("numerics"), "/numerics");
   n.number("dt_safety", s.dt_safety, "in (0, 1]", [](double v) { return v > 0.0 && v <= 1.0; });
+  double dt = 0.0;
+  if (n.number("dt", dt, "> 0 s", positive)) s.fixed_dt = dt;
   n.number("local_damping", s.local_damping, "in [0, 1)",
            [](double v) { return v >= 0.0 && v < 1.0; });
   std::string rotation = rotation_integrator_name(s.rotation);

@@ -28,36 +28,37 @@ struct BoxTestScene {
   // box, m
   double length = box_test::kLength, width = box_test::kWidth, height = box_test::kHeight;
   // materials: kn = ks per entity, combined in series at contacts
-  double ball_stiffness = box_test::kBallStiffness;      // N/m
-  double wall_stiffness = box_test::kBallStiffness;      // N/m, side walls and sleeper
-  double base_stiffness = box_test::kRubberStiffness;    // N/m, rubber base
-  double density = box_test::kDensity;                   // kg/m³
+  double ball_stiffness = box_test::kBallStiffness;    // N/m
+  double wall_stiffness = box_test::kBallStiffness;    // N/m, side walls and sleeper
+  double base_stiffness = box_test::kRubberStiffness;  // N/m, rubber base
+  double density = box_test::kDensity;                 // kg/m³
   double friction_compaction = box_test::kFrictionCompaction;
   double friction_loading = box_test::kFrictionLoading;
   // numerics
   double dt_safety = 0.8;
+  std::optional<double> fixed_dt;  // s; unset: dt = dt_safety × critical estimate
   double local_damping = 0.7;
   RotationIntegrator rotation = RotationIntegrator::kPfc;
   // preparation (PFC radius expansion, then gravity compaction)
-  double initial_porosity = 0.5;   // of the grown spheres in their fill region (loose:
-                                   // denser jams while growing and springs apart)
-  double expansion_speed = 0.05;   // m/s at which ball radii grow (slow enough not to fling)
+  double initial_porosity = 0.5;      // of the grown spheres in their fill region (loose:
+                                      // denser jams while growing and springs apart)
+  double expansion_speed = 0.05;      // m/s at which ball radii grow (slow enough not to fling)
   bool frictionless_settling = true;  // settle at 1 g without friction before compaction
-  double gravity_factor = 10.0;    // enhanced gravity during compaction, × 9.81 m/s²
-  double equilibrium_ratio = 5e-3; // unbalanced-force ratio ending a settling stage
-  long max_stage_steps = 400000;   // a stage that has not settled by then stops
+  double gravity_factor = 10.0;       // enhanced gravity during compaction, × 9.81 m/s²
+  double equilibrium_ratio = 5e-3;    // unbalanced-force ratio ending a settling stage
+  long max_stage_steps = 400000;      // a stage that has not settled by then stops
   // sleeper: a rigid block across the full width, centred in x (the paper gives
   // no size: an assumption, docs/BOX_TEST.md)
   double sleeper_length = 0.25, sleeper_height = 0.1;  // m
-  double preload = 3e3, peak_load = 40e3;               // N
-  double frequency = 3.0;                               // Hz
+  double preload = 3e3, peak_load = 40e3;              // N
+  double frequency = 3.0;                              // Hz
   long cycles = 1;
   double sleeper_max_speed = 0.5;  // m/s, servo cap
   double sleeper_gain = 0.5;       // servo gain (engine/servo.hpp); 0.5 tracked best of 0.1-1
   // measurements
-  double cube_side = 0.005;        // m, the paper's porosity grid
-  double sphere_radius = 0.05;     // m, measurement spheres
-  long series_every = 200;         // steps between load-displacement samples
+  double cube_side = 0.005;     // m, the paper's porosity grid
+  double sphere_radius = 0.05;  // m, measurement spheres
+  long series_every = 200;      // steps between load-displacement samples
   // "": all stages; "prepare" or "compact" stop early (for studies of settling).
   std::string stop_after;
 };
@@ -68,6 +69,8 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& j);
 BoxTestScene load_box_test_scene(const std::string& path);
 
 // Volume-equivalent radius of the particles' nominal sphere, m.
-inline double nominal_radius(const BoxTestScene& s) { return 0.5 * s.diameter; }
+inline double nominal_radius(const BoxTestScene& s) {
+  return 0.5 * s.diameter;
+}
 
 }  // namespace ballast

@@ -64,6 +64,9 @@ constexpr StudyKey kStudyKeys[] = {
     text("adjacency", "hull|face_to_diagonal", "clump",
          "direction pairs joined by edge balls (docs/CLUMPS.md)"),
     number("dt_safety", open_closed(0, 1), "numerics", "timestep = dt_safety x critical"),
+    number(
+        "dt", above(0), "numerics",
+        "fixed timestep, s, instead of dt_safety x critical (above critical: warned, may blow up)"),
     text("rotation", "pfc|full", "numerics",
          "clump rotation: gyroscopic term dropped as PFC3D 3.x does (eq 17, [W] = 0) or kept"),
     text("mass_mode", "sum|paper|uniform", "numerics", "clump mass properties (docs/CLUMPS.md)"),

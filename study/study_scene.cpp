@@ -24,6 +24,7 @@ constexpr SceneKey kSceneKeys[] = {
     {"virtual_sphere_factor", "/particles/clump/virtual_sphere_factor"},
     {"adjacency", "/particles/clump/adjacency"},
     {"dt_safety", "/numerics/dt_safety"},
+    {"dt", "/numerics/dt"},
     {"rotation", "/numerics/rotation"},
     {"mass_mode", "/particles/mass_mode"},
     {"local_damping", "/numerics/local_damping"},

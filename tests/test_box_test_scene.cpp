@@ -98,3 +98,14 @@ TEST(BoxTestScene, SeedTakesAll64Bits) {
   const std::string fraction = error_of({{"particles", {{"seed", 1.5}}}});
   EXPECT_NE(fraction.find("/particles/seed = 1.5"), std::string::npos) << fraction;
 }
+
+// numerics/dt fixes the timestep; unset, the run takes dt_safety × the critical estimate.
+TEST(BoxTestScene, FixedTimestepIsOptionalAndPositive) {
+  EXPECT_FALSE(parse_box_test_scene(json::object()).fixed_dt.has_value());
+  const BoxTestScene s = parse_box_test_scene(json::parse(R"({"numerics": {"dt": 1e-6}})"));
+  ASSERT_TRUE(s.fixed_dt.has_value());
+  EXPECT_DOUBLE_EQ(*s.fixed_dt, 1e-6);
+  const std::string e = error_of(json::parse(R"({"numerics": {"dt": -1e-6}})"));
+  EXPECT_NE(e.find("/numerics/dt"), std::string::npos) << e;
+  EXPECT_NE(e.find("> 0 s"), std::string::npos) << e;
+}

@@ -120,7 +120,8 @@ class Archive(unittest.TestCase):
             self.assertIn("blew up", text(g.attrs["message"]))
             self.assertIn("exceeds max_speed", text(g.attrs["message"]))
             self.assertNotIn("particles", g)
-            self.assertIn("stage 2:", text(g["log"][()]))
+            self.assertIn("dt = 5e-06 s", text(g.attrs["message"]))
+            self.assertIn("stage 1:", text(g["log"][()]))
             # The runs after it (indices 2 and 3) ran and are ok.
             for run in ("spheres_dt-r1", "T2S1-r1"):
                 self.assertEqual(text(f["runs"][run].attrs["status"]), "ok")
