@@ -52,8 +52,8 @@ def clump_gallery(runs, out_dir):
     samples = [(r, r.clump_templates()) for r in runs if r.is_clumps]
     for r, s in samples:
         if s is None:
-            note(f"Fig. 7: run '{r.id}' holds no clump templates (a single-run file "
-                 "does not; study archives do): left out")
+            note(f"Fig. 7: run '{r.id}' holds no clump templates (an archive written "
+                 "before runs stored them): left out")
     samples = [(r, s) for r, s in samples if s is not None and len(s["count"])]
     if not samples:
         return []
