@@ -21,8 +21,7 @@ namespace {
 // sphere is centred in) is put at a packing centre p with a random rotation Q. A
 // ball at x_gen = gc + G·offset then sits at p + Q·x_gen, so the body's centre of
 // mass is p + Q·gc and its principal frame is Q·G.
-void add_clumps(Simulation& sim, const BedOptions& o, const std::vector<Vec3>& centres,
-                Index mat) {
+void add_clumps(Simulation& sim, const BedOptions& o, const std::vector<Vec3>& centres, Index mat) {
   ClumpParams params = *o.clumps;
   params.nominal_diameter = o.diameter;
   ClumpMassOptions mass = o.mass;

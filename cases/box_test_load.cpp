@@ -70,8 +70,7 @@ void measure_porosity(const BoxTestScene& s, const Simulation& sim, double x0, d
 
 }  // namespace
 
-void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out,
-                   std::ostream* log) {
+void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, std::ostream* log) {
   const double x0 = 0.5 * (s.length - s.sleeper_length), x1 = x0 + s.sleeper_length;
   const double top = bed_top(sim, x0, x1);
   // The sleeper: a rigid block over the full width, 1 mm above the bed.
@@ -92,8 +91,8 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out,
   const Index servo_id = sim.add_servo(servo);
   measure_porosity(s, sim, x0, x1, top, out);
   if (log)
-    *log << "stage 4: sleeper " << s.sleeper_length * 1e3 << " mm long on the bed at "
-         << top * 1e3 << " mm; grid porosity under it " << out.porosity_grid << "\n";
+    *log << "stage 4: sleeper " << s.sleeper_length * 1e3 << " mm long on the bed at " << top * 1e3
+         << " mm; grid porosity under it " << out.porosity_grid << "\n";
 
   // Seat the sleeper: down to the bed until it carries the preload, then let the
   // bed come to equilibrium under it.
@@ -139,10 +138,10 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out,
       out.settlement_peak = z0 - sim.walls()[wall].displacement.z();
     }
   }
-  out.stages.push_back({"cycle", sim.step_count() - step0, sim.time() - t0,
-                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-                            .count(),
-                        sim.unbalanced_force_ratio(), true});
+  out.stages.push_back(
+      {"cycle", sim.step_count() - step0, sim.time() - t0,
+       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+       sim.unbalanced_force_ratio(), true});
   out.rms_force_error = samples ? std::sqrt(err2 / samples) : 0.0;
   out.after = snapshot_contacts(sim);
   out.position_end = sim.bodies().position;
@@ -179,8 +178,8 @@ BoxTestResult run_box_test(const BoxTestScene& s, std::ostream* log) {
                      out);
     out.before = snapshot_contacts(sim);
     out.position_start = out.position_end = sim.bodies().position;
-    out.rotation_deg_cycle = angles(sim.bodies().rotation, std::vector<Vec3>(
-                                                               sim.bodies().size(), Vec3::Zero()));
+    out.rotation_deg_cycle =
+        angles(sim.bodies().rotation, std::vector<Vec3>(sim.bodies().size(), Vec3::Zero()));
     out.rotation_cycle = stats_of(out.rotation_deg_cycle);
   }
   out.bodies = sim.bodies().size();

@@ -24,8 +24,8 @@ namespace ballast {
 struct StageReport {
   std::string name;
   long steps = 0;
-  double simulated = 0.0;  // s
-  double seconds = 0.0;    // wall-clock s
+  double simulated = 0.0;   // s
+  double seconds = 0.0;     // wall-clock s
   double unbalanced = 0.0;  // ratio at the end
   bool settled = false;     // ended by the equilibrium rule, not the step limit
 };

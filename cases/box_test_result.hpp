@@ -50,7 +50,7 @@ struct BoxTestResult {
   // clump overlap, and a measurement sphere would count the overlaps twice).
   double porosity_grid = 0.0;
   std::vector<double> sphere_heights, porosity_spheres;  // m, -
-  double bed_height = 0.0;  // m, top of the bed under the sleeper
+  double bed_height = 0.0;                               // m, top of the bed under the sleeper
 
   ContactSnapshot before, at_peak, after;
   RotationStats rotation_loading, rotation_unloading, rotation_cycle;

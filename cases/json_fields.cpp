@@ -9,8 +9,8 @@ const nlohmann::json kEmpty = nlohmann::json::object();
 JsonFields::JsonFields(const nlohmann::json& object, std::string path)
     : j_(object), path_(std::move(path)) {
   if (!j_.is_object())
-    throw SetupError("invalid " + (path_.empty() ? std::string("/") : path_) + " = " +
-                     j_.dump() + " (allowed: a JSON object)");
+    throw SetupError("invalid " + (path_.empty() ? std::string("/") : path_) + " = " + j_.dump() +
+                     " (allowed: a JSON object)");
 }
 
 const nlohmann::json* JsonFields::find(const char* key) {
@@ -19,10 +19,8 @@ const nlohmann::json* JsonFields::find(const char* key) {
   return it == j_.end() ? nullptr : &*it;
 }
 
-void JsonFields::fail(const char* key, const std::string& value,
-                      const std::string& allowed) const {
-  throw SetupError("invalid " + path_ + "/" + key + " = " + value + " (allowed: " + allowed +
-                   ")");
+void JsonFields::fail(const char* key, const std::string& value, const std::string& allowed) const {
+  throw SetupError("invalid " + path_ + "/" + key + " = " + value + " (allowed: " + allowed + ")");
 }
 
 bool JsonFields::number(const char* key, double& out, const std::string& allowed,
@@ -38,8 +36,7 @@ bool JsonFields::integer(const char* key, long& out, const std::string& allowed,
                          const std::function<bool(long)>& ok) {
   const nlohmann::json* v = find(key);
   if (!v) return false;
-  if (!v->is_number_integer() || !ok(v->get<long>()))
-    fail(key, v->dump(), "an integer " + allowed);
+  if (!v->is_number_integer() || !ok(v->get<long>())) fail(key, v->dump(), "an integer " + allowed);
   out = v->get<long>();
   return true;
 }

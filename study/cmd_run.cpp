@@ -32,7 +32,8 @@ struct RunOptions {
 void apply_override(nlohmann::json& j, const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || text.empty() || text[0] != '/')
-    throw SetupError("invalid --set '" + text + "' (allowed: /json/pointer=value, e.g. "
+    throw SetupError("invalid --set '" + text +
+                     "' (allowed: /json/pointer=value, e.g. "
                      "/numerics/rotation=full)");
   nlohmann::json value;
   try {

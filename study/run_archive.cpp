@@ -70,10 +70,9 @@ void write_box_test_result(hid_t run, const BoxTestResult& r) {
   number_attribute(run, "rms_force_error", r.rms_force_error);
   number_attribute(run, "max_displacement_peak", r.max_displacement_peak);
   number_attribute(run, "max_displacement_after", r.max_displacement_after);
-  const std::pair<const char*, RotationStats> rotations[] = {
-      {"loading", r.rotation_loading},
-      {"unloading", r.rotation_unloading},
-      {"cycle", r.rotation_cycle}};
+  const std::pair<const char*, RotationStats> rotations[] = {{"loading", r.rotation_loading},
+                                                             {"unloading", r.rotation_unloading},
+                                                             {"cycle", r.rotation_cycle}};
   for (const auto& [phase, s] : rotations) {
     number_attribute(run, ("rotation_" + std::string(phase) + "_mean_deg").c_str(), s.mean_deg);
     number_attribute(run, ("rotation_" + std::string(phase) + "_max_deg").c_str(), s.max_deg);

@@ -8,8 +8,10 @@ namespace ballast {
 namespace {
 
 nlohmann::json contacts_json(const ContactSnapshot& c) {
-  return {{"ball_contacts", c.stats.ball_contacts}, {"wall_contacts", c.stats.wall_contacts},
-          {"coordination", c.stats.coordination},   {"max_force_N", c.stats.max_force},
+  return {{"ball_contacts", c.stats.ball_contacts},
+          {"wall_contacts", c.stats.wall_contacts},
+          {"coordination", c.stats.coordination},
+          {"max_force_N", c.stats.max_force},
           {"mean_force_N", c.stats.mean_force}};
 }
 
@@ -60,8 +62,9 @@ nlohmann::json run_summary_json(const BoxTestResult& r) {
 
 void print_run_summary(std::ostream& out, const BoxTestResult& r) {
   char line[200];
-  out << "\n" << r.scene_name << ": " << r.bodies << " bodies, " << r.balls << " balls, dt "
-      << r.dt << " s (critical " << r.dt_critical << " s), " << r.wall_seconds << " s wall\n";
+  out << "\n"
+      << r.scene_name << ": " << r.bodies << " bodies, " << r.balls << " balls, dt " << r.dt
+      << " s (critical " << r.dt_critical << " s), " << r.wall_seconds << " s wall\n";
   out << "porosity under the sleeper (5 mm grid): " << r.porosity_grid << "\n";
   std::snprintf(line, sizeof line, "%-16s %9s %9s %6s %10s %10s\n", "contacts", "ball-ball",
                 "ball-wall", "Z", "max F (N)", "mean F (N)");
@@ -88,8 +91,8 @@ void print_run_summary(std::ostream& out, const BoxTestResult& r) {
                 "sleeper settlement: %.3f mm at peak, permanent %.3f mm, resilient %.3f mm\n"
                 "sleeper force vs target: max error %.0f N, rms %.0f N\n",
                 r.max_displacement_peak * 1e3, r.max_displacement_after * 1e3,
-                r.settlement_peak * 1e3, r.permanent_settlement * 1e3,
-                r.resilient_settlement * 1e3, r.max_force_error, r.rms_force_error);
+                r.settlement_peak * 1e3, r.permanent_settlement * 1e3, r.resilient_settlement * 1e3,
+                r.max_force_error, r.rms_force_error);
   out << line;
 }
 

@@ -36,8 +36,7 @@ void vectors(std::ofstream& out, const char* name, const std::vector<Vec3>& a,
     out << (k < a.size() ? Vec3(a[k] - b[k]) : Vec3::Zero()).transpose() << "\n";
 }
 
-void scalars(std::ofstream& out, const char* name, const std::vector<double>& v,
-             std::size_t n) {
+void scalars(std::ofstream& out, const char* name, const std::vector<double>& v, std::size_t n) {
   out << "SCALARS " << name << " double 1\nLOOKUP_TABLE default\n";
   for (std::size_t k = 0; k < n; ++k) out << (k < v.size() ? v[k] : 0.0) << "\n";
 }
