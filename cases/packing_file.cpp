@@ -110,12 +110,7 @@ Packing parse_packing(std::istream& in, const std::string& name) {
     const Vec3 x(line.number_at(o, names[o]), line.number_at(o + 1, names[o + 1]),
                  line.number_at(o + 2, names[o + 2]));
     const double r = line.number_at(o + 3, names[o + 3]);
-    if (!(r > 0.0)) {
-      std::ostringstream s;
-      s.precision(17);
-      s << "radius r = " << r << " (allowed: > 0 m)";
-      line.fail(s.str());
-    }
+    if (!(r > 0.0)) line.fail("radius r = " + line.fields[o + 3] + " (allowed: > 0 m)");
     if (!p.clumps) {
       p.body_id.push_back(p.bodies());
     } else {

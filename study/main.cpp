@@ -4,6 +4,7 @@
 #include <exception>
 #include <iostream>
 
+#include "study/cmd_bench_bed.hpp"
 #include "study/cmd_clump.hpp"
 #include "study/cmd_demo.hpp"
 #include "study/cmd_run.hpp"
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
   ballast::register_demo_command(app);
   ballast::register_clump_command(app);
   ballast::register_run_command(app);
+  ballast::register_bench_bed_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
