@@ -5,7 +5,7 @@ JOBS   ?= $(shell nproc)
 MAKEFLAGS += --no-print-directory
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build run test test-fast test-slow bench format clean
+.PHONY: all deps configure build run test test-fast test-slow bench bench-peers format clean
 
 all: build
 
@@ -47,6 +47,15 @@ test-slow: build
 
 bench: build
 	@$(BUILD)/tests/bench/ballast_bench --benchmark_counters_tabular=true
+
+# Side by side with LAMMPS and YADE on the same settled beds (issue 7,
+# docs/PERFORMANCE.md "Peers"): installs the two codes if missing, builds the beds
+# once (cached in $(BUILD)/peers), checks the conventions, times every code and
+# cross-checks the physics. Not part of `make test`: CI never installs the peers.
+bench-peers: build
+	@bash scripts/install-peers.sh
+	@/usr/bin/python3 tests/bench/peers/bench_peers.py --ballast $(BUILD)/study/ballast \
+	  --cases cases --cache $(BUILD)/peers $(PEERS_FLAGS)
 
 format:
 	@git ls-files '*.cpp' '*.hpp' | xargs clang-format -i

@@ -8,6 +8,7 @@
 // Achieved against target force is part of the result.
 #pragma once
 
+#include <functional>
 #include <iosfwd>
 
 #include "cases/box_test_result.hpp"
@@ -15,8 +16,11 @@
 
 namespace ballast {
 
-// Prepares (box_test_prepare.hpp) and loads; progress lines go to `log`.
-BoxTestResult run_box_test(const BoxTestScene& scene, std::ostream* log);
+// Prepares (box_test_prepare.hpp) and loads; progress lines go to `log`. `at_end`,
+// when given, sees the simulation after the last stage that ran (the bed after
+// preparation, compaction or the load cycle: `ballast run --export-packing`).
+BoxTestResult run_box_test(const BoxTestScene& scene, std::ostream* log,
+                           const std::function<void(const Simulation&)>& at_end = {});
 
 // Stage 4 on a prepared bed.
 void load_box_test(const BoxTestScene& scene, Simulation& sim, BoxTestResult& out,

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "cases/bed.hpp"
+#include "cases/packing_bodies.hpp"
 #include "cases/sphere_packing.hpp"
 #include "engine/ball_union_integral.hpp"
 #include "engine/clump_batch.hpp"
@@ -135,6 +136,8 @@ double bed_top(const Simulation& sim, double x0, double x1) {
   return top;
 }
 
+namespace {
+
 // Mean volume of the union of each clump's balls over (at most) the first 256
 // templates, m³: the space a clump really takes, overlaps counted once. 2 % accuracy
 // per clump is ample for sizing a fill region.
@@ -149,7 +152,8 @@ double mean_clump_volume(const std::vector<ClumpTemplate>& templates) {
   return sum / double(n);
 }
 
-PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
+// Stages 1-2: the sample generated and grown under a lid, which is then lifted away.
+PreparedBed generate_sample(const BoxTestScene& s, std::ostream* log) {
   const double r = nominal_radius(s);
   const double sphere_volume = 4.0 / 3.0 * kPi * r * r * r;
   const double area = s.length * s.width;
@@ -246,6 +250,39 @@ PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
     out.templates = std::move(templates);  // kept for the run's archive
   }
   lift_lid(out.sim, s.height);
+  return out;
+}
+
+// The imported packing stands for stages 1-2: the box without a lid, frictionless
+// until compaction brings friction, like a generated sample.
+PreparedBed import_sample(const BoxTestScene& s, std::ostream* log) {
+  Packing packing;
+  try {
+    packing = read_packing_file(s.packing_file);
+  } catch (const SetupError& e) {
+    throw SetupError(std::string("/particles/file: ") + e.what());
+  }
+  const PackingMass mass{{s.mass_mode, s.density, s.mass_accuracy}, s.diameter};
+  PreparedBed out{Simulation(settings_for(s, packing_body_size(packing))), {}, 0.0, {}};
+  Simulation& sim = out.sim;
+  const Index mat = sim.add_material({s.ball_stiffness, s.ball_stiffness, 0.0});
+  const Material sides{s.wall_stiffness, s.wall_stiffness, 0.0};
+  const Material base{s.base_stiffness, s.base_stiffness, 0.0};
+  for (const Wall& w : box_container(Vec3::Zero(), Vec3(s.length, s.width, s.height), sides, base,
+                                     /*open_top=*/true))
+    sim.add_wall(w);
+  add_packing(sim, packing, mass, mat);
+  if (log)
+    *log << "stages 1-2: " << packing.bodies() << " " << (packing.clumps ? "clumps" : "spheres")
+         << " (" << packing.balls() << " balls, mass mode " << mass_mode_name(s.mass_mode)
+         << ") imported from " << s.packing_file << "\n";
+  return out;
+}
+
+}  // namespace
+
+PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
+  PreparedBed out = s.packing_file.empty() ? generate_sample(s, log) : import_sample(s, log);
   if (s.frictionless_settling) {
     // The sample settles into its dense state still frictionless, as a radius-
     // expansion sample is meant to reach its porosity before loading starts; under

@@ -7,6 +7,8 @@
 //                sphere and grown back, so the overlaps relax gradually;
 //   3. compact   enhanced gravity with friction 0.3, gravity back to 9.81 m/s², then
 //                friction raised to its loading value; each ends at equilibrium.
+// A scene with a packing file (BoxTestScene::packing_file) skips stages 1-2: the
+// imported bed stands for the prepared sample, in the box without its lid.
 // Every settling stage ends when the unbalanced-force ratio falls below the scene's
 // equilibrium_ratio (checked every 500 steps) or after max_stage_steps.
 #pragma once
@@ -39,8 +41,8 @@ struct PreparedBed {
   std::vector<ClumpTemplate> templates;
 };
 
-// Runs stages 1-3 (or fewer: scene.stop_after). Progress lines go to `log`
-// (nullptr: silent).
+// Runs stages 1-3 (or fewer: scene.stop_after; 3 only for an imported packing). Progress lines go
+// to `log` (nullptr: silent).
 PreparedBed prepare_box_test(const BoxTestScene& scene, std::ostream* log);
 
 enum class SettleRule {

@@ -1,6 +1,7 @@
 #include "cases/box_test_scene.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -14,8 +15,24 @@ namespace {
 const auto positive = [](double v) { return v > 0.0; };
 const auto fraction = [](double v) { return v >= 0.0 && v <= 1.0; };
 
-void read_particles(const nlohmann::json& j, BoxTestScene& s) {
+// With /particles/file the file says what the particles are and where: the keys
+// that generate a sample would be silently ignored, so they are refused.
+void refuse_with_file(const nlohmann::json& object, const char* key, const std::string& parent) {
+  const auto it = object.find(key);
+  if (it == object.end()) return;
+  throw SetupError("invalid " + parent + "/" + key + " = " + it->dump() +
+                   " together with /particles/file (allowed with a file: mass_mode, "
+                   "mass_accuracy, and diameter for mass_mode \"paper\"; the file gives the "
+                   "particles, and stages 1-2 of the preparation, which " +
+                   key + " would shape, are skipped)");
+}
+
+void read_particles(const nlohmann::json& j, BoxTestScene& s, const std::string& scene_dir) {
   JsonFields f(j, "/particles");
+  const bool has_file = f.text("file", s.packing_file, "a non-empty path to a packing file",
+                               [](const std::string& v) { return !v.empty(); });
+  if (has_file && std::filesystem::path(s.packing_file).is_relative() && !scene_dir.empty())
+    s.packing_file = (std::filesystem::path(scene_dir) / s.packing_file).lexically_normal();
   const std::vector<std::string> presets = available_clump_presets();
   std::string names = "\"spheres\"";
   for (const std::string& p : presets) names += ", \"" + p + "\"";
@@ -34,6 +51,12 @@ void read_particles(const nlohmann::json& j, BoxTestScene& s) {
            [](double v) { return v >= 1e-5 && v <= 0.1; });
   const nlohmann::json& clump = f.object("clump");
   f.finish();
+  if (has_file) {
+    for (const char* key : {"shape", "count", "seed", "clump"})
+      refuse_with_file(j, key, "/particles");
+    s.clumps.reset();
+    return;
+  }
   if (s.shape == "spheres") {
     if (!clump.empty())
       throw SetupError(
@@ -67,11 +90,11 @@ void read_particles(const nlohmann::json& j, BoxTestScene& s) {
 
 }  // namespace
 
-BoxTestScene parse_box_test_scene(const nlohmann::json& j) {
+BoxTestScene parse_box_test_scene(const nlohmann::json& j, const std::string& scene_dir) {
   BoxTestScene s;
   JsonFields top(j, "");
   top.text("name", s.name, "a non-empty string", [](const std::string& v) { return !v.empty(); });
-  read_particles(top.object("particles"), s);
+  read_particles(top.object("particles"), s, scene_dir);
 
   JsonFields box(top.object("box"), "/box");
   box.number("length", s.length, "> 0 m", positive);
@@ -106,6 +129,9 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& j) {
            [](double v) { return v >= 0.3 && v <= 0.7; });
   p.number("expansion_speed", s.expansion_speed, "in (0, 1] m/s",
            [](double v) { return v > 0.0 && v <= 1.0; });
+  if (!s.packing_file.empty())
+    for (const char* key : {"initial_porosity", "expansion_speed"})
+      refuse_with_file(top.object("preparation"), key, "/preparation");
   p.boolean("frictionless_settling", s.frictionless_settling);
   p.number("gravity_factor", s.gravity_factor, "in [1, 1000]",
            [](double v) { return v >= 1.0 && v <= 1000.0; });
@@ -147,7 +173,7 @@ BoxTestScene load_box_test_scene(const std::string& path) {
     throw SetupError("scene file '" + path + "' is not valid JSON: " + e.what());
   }
   try {
-    return parse_box_test_scene(j);
+    return parse_box_test_scene(j, std::filesystem::path(path).parent_path().string());
   } catch (const SetupError& e) {
     throw SetupError("scene file '" + path + "': " + e.what());
   }

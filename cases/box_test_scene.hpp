@@ -20,6 +20,10 @@ struct BoxTestScene {
   // given in the file override the preset's.
   std::string shape = "spheres";
   std::optional<ClumpParams> clumps;  // resolved from shape (unset for spheres)
+  // A packing file (cases/packing_file.hpp) that stands for the prepared sample:
+  // stages 1-2 are skipped. Resolved against the scene file's directory; empty: the
+  // sample is generated.
+  std::string packing_file;
   long count = box_test::kSphereCount;
   double diameter = box_test::kSphereDiameter;  // m, spheres and clumps' nominal sphere
   std::uint64_t seed = 1;
@@ -64,8 +68,9 @@ struct BoxTestScene {
 };
 
 // Parses a scene file's JSON. Errors (SetupError) give the JSON path, the value and
-// what is allowed; unknown keys are errors.
-BoxTestScene parse_box_test_scene(const nlohmann::json& j);
+// what is allowed; unknown keys are errors. A relative /particles/file is taken
+// relative to `scene_dir` (the scene file's directory; empty: as it stands).
+BoxTestScene parse_box_test_scene(const nlohmann::json& j, const std::string& scene_dir = "");
 BoxTestScene load_box_test_scene(const std::string& path);
 
 // Volume-equivalent radius of the particles' nominal sphere, m.

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -10,6 +11,7 @@
 #include <sstream>
 
 #include "cases/box_test_load.hpp"
+#include "cases/packing_bodies.hpp"
 #include "engine/errors.hpp"
 #include "study/run_archive.hpp"
 #include "study/run_summary.hpp"
@@ -23,6 +25,7 @@ struct RunOptions {
   std::string scene;
   std::string output;
   std::string vtk_dir;
+  std::string export_packing;          // packing file of the bed after the last stage
   std::vector<std::string> overrides;  // "/numerics/rotation=full"
   int threads = 0;
   bool json = false;
@@ -59,13 +62,30 @@ void run(const RunOptions& o) {
   for (const std::string& s : o.overrides) apply_override(j, s);
   BoxTestScene scene;
   try {
-    scene = parse_box_test_scene(j);
+    scene = parse_box_test_scene(j, std::filesystem::path(o.scene).parent_path().string());
   } catch (const SetupError& e) {
     throw SetupError("scene file '" + o.scene + "': " + e.what());
   }
+  if (!o.export_packing.empty()) {
+    // Refused now rather than after a run of many minutes.
+    const std::filesystem::path dir = std::filesystem::path(o.export_packing).parent_path();
+    if (!dir.empty() && !std::filesystem::is_directory(dir))
+      throw SetupError("invalid --export-packing = '" + o.export_packing +
+                       "' (allowed: a file in " + "an existing directory; '" + dir.string() +
+                       "' is not one)");
+  }
   std::ostream* log = o.json ? &std::cerr : &std::cout;
   *log << "box test '" << scene.name << "' on " << omp_get_max_threads() << " thread(s)\n";
-  const BoxTestResult r = run_box_test(scene, log);
+  const auto export_bed = [&](const Simulation& sim) {
+    if (o.export_packing.empty()) return;
+    const std::string after = scene.stop_after.empty()        ? "the load cycle"
+                              : scene.stop_after == "prepare" ? "preparation"
+                                                              : "compaction";
+    write_packing_file(o.export_packing, packing_of(sim),
+                       "ballast run " + o.scene + " (scene '" + scene.name + "'), after " + after);
+    *log << "packing written to " << o.export_packing << "\n";
+  };
+  const BoxTestResult r = run_box_test(scene, log, export_bed);
   if (!o.output.empty()) write_run_file(o.output, j.dump(2), r);
   if (!o.vtk_dir.empty()) write_run_vtk(o.vtk_dir, r);
   if (o.json)
@@ -82,6 +102,9 @@ void register_run_command(CLI::App& app) {
   cmd->add_option("scene", o->scene, "scene file (cases/box_test/*.json)")->required();
   cmd->add_option("-o,--output", o->output, "write the run to this HDF5 file");
   cmd->add_option("--vtk", o->vtk_dir, "write ParaView files into this directory");
+  cmd->add_option("--export-packing", o->export_packing,
+                  "write the bed after the last stage that ran as a packing file (x y z r, or "
+                  "body x y z r for clumps; docs/BOX_TEST.md)");
   cmd->add_option("--set", o->overrides, "override a scene value: /json/pointer=value");
   cmd->add_option("--threads", o->threads, "OpenMP threads (0: OMP_NUM_THREADS or all cores)")
       ->check(CLI::NonNegativeNumber);

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "engine/errors.hpp"
+#include "study/cmd_bench_bed.hpp"
 #include "study/cmd_clump.hpp"
 #include "study/cmd_demo.hpp"
 #include "study/cmd_merge.hpp"
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
   ballast::register_run_command(app);
   ballast::register_study_command(app);
   ballast::register_merge_command(app);
+  ballast::register_bench_bed_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -100,9 +100,10 @@ class RunCommand(unittest.TestCase):
         cls.tmp = tempfile.TemporaryDirectory()
         cls.archive = os.path.join(cls.tmp.name, "run.h5")
         cls.vtk = os.path.join(cls.tmp.name, "vtk")
+        cls.bed = os.path.join(cls.tmp.name, "bed.txt")
         scene = os.path.join(CASES, "box_test", "smoke.json")
         r = ballast("run", scene, "-o", cls.archive, "--vtk", cls.vtk, "--json",
-                    "--threads", "1")
+                    "--threads", "1", "--export-packing", cls.bed)
         assert r.returncode == 0, r.stderr
         cls.spheres = json.loads(r.stdout)
         r = ballast("run", scene, "--set", "/particles/shape=table2/sample1", "--json",
@@ -150,6 +151,36 @@ class RunCommand(unittest.TestCase):
             self.assertIn("scene_json", f.attrs)
         self.assertTrue(os.path.exists(os.path.join(self.vtk, "contacts_peak.vtk")))
 
+    def test_exported_bed_is_a_packing_that_a_scene_imports_unchanged(self):
+        # Written after the last stage (the load cycle), one x y z r line per sphere.
+        with open(self.bed) as f:
+            lines = [l for l in f if not l.startswith("#")]
+        self.assertEqual(len(lines), self.spheres["bodies"])
+        self.assertTrue(all(len(l.split()) == 4 for l in lines))
+        # A scene with the file beside it: no settling and stop_after "prepare" run no
+        # step, so the bed comes out as it went in, digit for digit.
+        with tempfile.TemporaryDirectory() as d:
+            with open(os.path.join(d, "bed.txt"), "w") as f:
+                f.write("".join(lines))
+            scene = os.path.join(d, "imported.json")
+            with open(scene, "w") as f:
+                json.dump({"name": "imported", "particles": {"file": "bed.txt"},
+                           "box": {"length": 0.35, "width": 0.15, "height": 0.3},
+                           "preparation": {"frictionless_settling": False,
+                                           "stop_after": "prepare"}}, f)
+            out = os.path.join(d, "again.txt")
+            r = ballast("run", scene, "--json", "--threads", "1", "--export-packing", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            s = json.loads(r.stdout)
+            self.assertEqual(s["bodies"], self.spheres["bodies"])
+            self.assertEqual(s["stages"], [])
+            with open(out) as f:
+                self.assertEqual([l for l in f if not l.startswith("#")], lines)
+            # A key that would shape a generated sample is refused beside a file.
+            r = ballast("run", scene, "--set", "/particles/count=10")
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn("/particles/count = 10 together with /particles/file", r.stderr)
+
     def test_bad_scene_value_is_refused_with_exit_code_2_and_no_file(self):
         with tempfile.TemporaryDirectory() as tmp:
             out = os.path.join(tmp, "run.h5")
@@ -159,6 +190,41 @@ class RunCommand(unittest.TestCase):
             self.assertIn("/sleeper/frequency = -3", r.stderr)
             self.assertIn("> 0 Hz", r.stderr)
             self.assertFalse(os.path.exists(out))
+
+
+class BenchBedCommand(unittest.TestCase):
+    """`ballast bench-bed`, the peer benchmark's run of our engine (issue 7)."""
+
+    def test_json_reports_speed_and_the_physics_of_a_resting_ball(self):
+        # A sphere at its static overlap m g / k on the floor (k = 5.08e9 N/m per
+        # contact) and one falling: the resting one carries exactly its weight.
+        r, rho, g, k = 0.018125, 2600.0, 9.81, 5.08e9
+        m = rho * 4.0 / 3.0 * math.pi * r ** 3
+        with tempfile.TemporaryDirectory() as d:
+            bed = os.path.join(d, "bed.txt")
+            with open(bed, "w") as f:
+                f.write(f"0.2 0.15 {r - m * g / k!r} {r!r}\n0.5 0.15 0.2 {r!r}\n")
+            out = ballast("bench-bed", bed, "--steps", "500", "--threads", "1", "--json")
+        self.assertEqual(out.returncode, 0, out.stderr)
+        s = json.loads(out.stdout)
+        self.assertEqual((s["code"], s["balls"], s["steps"], s["dt_s"]), ("ballast", 2, 500, 1e-6))
+        self.assertGreater(s["ball_steps_per_s"], 0.0)
+        self.assertEqual(s["ball_wall"]["count"], 1)
+        self.assertEqual(s["ball_ball"]["count"], 0)
+        self.assertAlmostEqual(s["ball_wall"]["mean_normal_force_N"], m * g, delta=1e-6 * m * g)
+        # Only the falling ball moves: 1/2 m (n g dt)^2 after n steps.
+        v = 500 * g * 1e-6
+        self.assertAlmostEqual(s["kinetic_energy_J"], 0.5 * m * v * v, delta=1e-9 * m * v * v)
+        self.assertEqual(len(s["state_hash"]), 16)
+
+    def test_bad_packing_is_refused_with_file_line_and_value(self):
+        with tempfile.TemporaryDirectory() as d:
+            bed = os.path.join(d, "bed.txt")
+            with open(bed, "w") as f:
+                f.write("# two balls\n0.2 0.15 0.02 0.018\n0.3 0.15 0.02 -0.018\n")
+            r = ballast("bench-bed", bed, "--steps", "10")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("bed.txt:3: radius r = -0.018 (allowed: > 0 m)", r.stderr)
 
 
 if __name__ == "__main__":

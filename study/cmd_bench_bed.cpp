@@ -1,0 +1,123 @@
+#include "study/cmd_bench_bed.hpp"
+
+#include <omp.h>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "cases/bench_bed.hpp"
+#include "cases/packing_bodies.hpp"
+#include "engine/state_hash.hpp"
+
+namespace ballast {
+
+namespace {
+
+struct BenchBedArgs {
+  std::string packing;
+  long steps = 1000;
+  int threads = 0;
+  bool json = false;
+  std::string rotation = "full";
+  std::string export_packing;
+  BenchBedOptions bed;
+};
+
+nlohmann::json means_json(const ContactForceMeans& m) {
+  return {{"count", m.count},
+          {"mean_normal_force_N", m.normal},
+          {"mean_tangential_force_N", m.tangential}};
+}
+
+void run(BenchBedArgs& a) {
+  if (a.threads > 0) omp_set_num_threads(a.threads);
+  a.bed.rotation = parse_rotation_integrator(a.rotation);
+  a.bed.log = &std::cerr;
+  const Packing packing = read_packing_file(a.packing);
+  Simulation sim = make_bench_bed(packing, a.bed);
+  sim.prepare();  // neighbour search and timestep check: set-up, not timed
+  const auto start = std::chrono::steady_clock::now();
+  sim.run(a.steps);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const BenchBedPhysics p = measure_bench_bed(sim);
+  const double rate = double(sim.balls().size()) * double(a.steps) / seconds;
+  char hash[32];
+  std::snprintf(hash, sizeof hash, "%016llx",
+                static_cast<unsigned long long>(
+                    state_hash(sim.bodies(), sim.ball_contacts(), sim.wall_contacts())));
+  if (!a.export_packing.empty())
+    write_packing_file(
+        a.export_packing, packing_of(sim),
+        "ballast bench-bed " + a.packing + " after " + std::to_string(a.steps) + " steps");
+  if (a.json) {
+    const nlohmann::json j = {{"code", "ballast"},
+                              {"threads", omp_get_max_threads()},
+                              {"processes", 1},
+                              {"packing", a.packing},
+                              {"bodies", sim.bodies().size()},
+                              {"balls", sim.balls().size()},
+                              {"clumps", packing.clumps},
+                              {"steps", a.steps},
+                              {"dt_s", sim.dt()},
+                              {"dt_critical_estimate_s", sim.critical_dt()},
+                              {"skin_m", sim.skin()},
+                              {"neighbour_builds", sim.neighbour_builds()},
+                              {"rotation", a.rotation},
+                              {"seconds", seconds},
+                              {"ball_steps_per_s", rate},
+                              {"ball_ball", means_json(p.ball_ball)},
+                              {"ball_wall", means_json(p.ball_wall)},
+                              {"all", means_json(p.all)},
+                              {"kinetic_energy_J", p.kinetic()},
+                              {"kinetic_translational_J", p.kinetic_translational},
+                              {"kinetic_rotational_J", p.kinetic_rotational},
+                              {"state_hash", hash}};
+    std::cout << j.dump(2) << "\n";
+    return;
+  }
+  std::printf(
+      "%s: %d bodies, %d balls, %ld steps of %g s on %d thread(s) in %.3f s: %.4g "
+      "ball-steps/s\n",
+      a.packing.c_str(), sim.bodies().size(), sim.balls().size(), a.steps, sim.dt(),
+      omp_get_max_threads(), seconds, rate);
+  std::printf(
+      "contacts: %ld ball-ball, %ld ball-wall; mean normal %.6g N, mean tangential %.6g "
+      "N; kinetic energy %.6g J; state hash %s\n",
+      p.ball_ball.count, p.ball_wall.count, p.all.normal, p.all.tangential, p.kinetic(), hash);
+}
+
+}  // namespace
+
+void register_bench_bed_command(CLI::App& app) {
+  auto a = std::make_shared<BenchBedArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "bench-bed",
+      "Step a packing in the box with the peer benchmark's physics (issue 7) and "
+      "report ball-steps/s and the physics after N steps");
+  cmd->add_option("packing", a->packing, "packing file (x y z r, or body x y z r)")->required();
+  cmd->add_option("--steps", a->steps, "time steps to run and time")->check(CLI::PositiveNumber);
+  cmd->add_option("--threads", a->threads, "OpenMP threads (0: OMP_NUM_THREADS or all cores)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--json", a->json, "print the result as JSON");
+  cmd->add_option("--rotation", a->rotation, "clump rotation integrator")
+      ->check(CLI::IsMember({"pfc", "full"}));
+  cmd->add_option("--stiffness", a->bed.contact_stiffness, "kn = ks per contact, N/m")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--friction", a->bed.friction, "Coulomb friction coefficient")
+      ->check(CLI::Range(0.0, 10.0));
+  cmd->add_option("--dt", a->bed.dt, "fixed time step, s")->check(CLI::PositiveNumber);
+  cmd->add_option("--density", a->bed.density, "ball density, kg/m^3")->check(CLI::PositiveNumber);
+  cmd->add_option("--local-damping", a->bed.local_damping,
+                  "PFC local damping alpha (0 in the benchmark; the convention checks settle "
+                  "with it)")
+      ->check(CLI::Range(0.0, 0.99));
+  cmd->add_option("--export-packing", a->export_packing,
+                  "write the bed after the last step as a packing file");
+  cmd->callback([a] { run(*a); });
+}
+
+}  // namespace ballast

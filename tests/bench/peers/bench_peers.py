@@ -1,0 +1,134 @@
+#!/usr/bin/python3
+"""Our engine beside LAMMPS and YADE on the same settled beds (issue 7): `make bench-peers`.
+
+1. The conventions (check_conventions.py): all three codes give kn = ks = 5.08e9 N/m
+   per contact and summed clump masses.
+2. The beds, built once and cached: the box-test preparation of spheres and of Table 2
+   Sample 1 clumps with the benchmark's physics (contacts of 5.08e9 N/m everywhere,
+   the base included, mu = 0.3, mass mode "sum"), stopped after compaction and
+   exported as packing files (beds.py).
+3. Per bed, rounds of: ours on 1 and 2 threads, LAMMPS on 1 process and 2 MPI ranks,
+   YADE on 1 and 2 threads, all from the same file and for the same number of steps,
+   the order turned by one each round so that drift on the host falls on every code.
+   Printed: median ball-steps/s of the stepping per code and thread count, our ratio
+   to each, our 2-thread/1-thread speed-up, whether our 1- and 2-thread states are
+   bit-identical (state hash), and the physics after the run beside each other.
+4. Exit 1 if a convention, the bit identity or the physics cross-check fails.
+"""
+import argparse
+import json
+import os
+import statistics
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import ballast_peer  # noqa: E402
+import beds  # noqa: E402
+import check_conventions  # noqa: E402
+import crosscheck  # noqa: E402
+import lammps_peer  # noqa: E402
+import yade_peer  # noqa: E402
+from packing import read_packing  # noqa: E402
+from physics import Physics  # noqa: E402
+
+
+def run_one(code, parallel, args, bed, packing, p, work):
+    """One timed run; returns its summary record."""
+    d = os.path.join(work, f"{bed}_{code}_{parallel}")
+    if code == "ballast":
+        return ballast_peer.run(args.ballast, packing.source, p, parallel)
+    if code == "lammps":
+        lammps_peer.write_inputs(packing, p, d)
+        log = lammps_peer.run(d, parallel)
+        return lammps_peer.results(packing, p, d, parallel, log)
+    yade_peer.write_script(packing, p, d)
+    return yade_peer.results(packing, yade_peer.run(d, parallel), parallel)
+
+
+def bench_bed(bed, path, steps, args, work):
+    packing = read_packing(path)
+    p = Physics(steps=steps)
+    runs = [(code, n) for n in (1, 2) for code in ("ballast", "lammps", "yade")]
+    records = {r: [] for r in runs}
+    load_before = os.getloadavg()
+    print(f"\n== {bed}: {len(packing.bodies)} bodies, {packing.balls} balls, {steps} steps of "
+          f"{p.dt:g} s, {args.rounds} rounds; host load average {load_before[0]:.1f} on "
+          f"{os.cpu_count()} cores ==", flush=True)
+    for k in range(args.rounds):
+        order = runs[k % len(runs):] + runs[:k % len(runs)]
+        for code, n in order:
+            r = run_one(code, n, args, bed, packing, p, work)
+            records[(code, n)].append(r)
+            print(f"  round {k + 1}: {code:7s} {n} {'ranks' if code == 'lammps' else 'threads'}:"
+                  f" {r['ball_steps_per_s']:.3e} ball-steps/s ({r['seconds']:.2f} s)", flush=True)
+    median = {r: statistics.median(x["ball_steps_per_s"] for x in records[r]) for r in runs}
+    print(f"\n{bed}: ball-steps/s, median of {args.rounds} rounds")
+    print("| code | 1 thread / process | 2 threads / ranks | 2 / 1 | ours / this, 1 | ours / this, 2 |")
+    print("|---|---|---|---|---|---|")
+    for code in ("ballast", "lammps", "yade"):
+        one, two = median[(code, 1)], median[(code, 2)]
+        r1 = median[("ballast", 1)] / one
+        r2 = median[("ballast", 2)] / two
+        print(f"| {code} | {one:.3g} | {two:.3g} | {two / one:.2f} | {r1:.2f} | {r2:.2f} |")
+    hashes = {x["state_hash"] for n in (1, 2) for x in records[("ballast", n)]}
+    identical = len(hashes) == 1
+    print(f"ours: 2 threads / 1 thread = {median[('ballast', 2)] / median[('ballast', 1)]:.2f}; "
+          f"state after {steps} steps {'bit-identical' if identical else 'DIFFERS'} on 1 and 2 "
+          f"threads over all rounds ({', '.join(sorted(hashes))})")
+    physics_ok = crosscheck.report(bed, {code: records[(code, 1)][0] for code in
+                                         ("ballast", "lammps", "yade")},
+                                   [records[("lammps", 2)][0], records[("yade", 2)][0]])
+    load_after = os.getloadavg()
+    print(f"{bed}: host load average {load_after[0]:.1f} after the runs (1-minute)")
+    return {"bed": bed, "packing": path, "steps": steps, "rounds": args.rounds,
+            "load_average": [load_before[0], load_after[0]],
+            "omp_wait_policy": os.environ.get("OMP_WAIT_POLICY", "default"),
+            "median_ball_steps_per_s": {f"{c}_{n}": v for (c, n), v in median.items()},
+            "records": {f"{c}_{n}": v for (c, n), v in records.items()},
+            "bit_identical": identical, "physics_ok": physics_ok}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--ballast", required=True, help="the ballast binary")
+    ap.add_argument("--cases", default=os.path.join(os.path.dirname(__file__), "..", "..", "..",
+                                                     "cases"), help="the cases/ directory")
+    ap.add_argument("--cache", required=True, help="where the beds are cached (build/peers)")
+    ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--beds", default="spheres,sample1", help="comma-separated: spheres, sample1")
+    ap.add_argument("--steps-spheres", type=int, default=10000)
+    ap.add_argument("--steps-sample1", type=int, default=1000)
+    ap.add_argument("--skip-conventions", action="store_true")
+    ap.add_argument("--omp-wait-policy", choices=("active", "passive"),
+                    help="OMP_WAIT_POLICY for the OpenMP codes (ours and YADE); default: "
+                         "their own. 'passive' keeps idle threads from spinning, which on a "
+                         "host busy with other work can slow a 2-thread run tenfold")
+    a = ap.parse_args()
+    if a.omp_wait_policy:
+        os.environ["OMP_WAIT_POLICY"] = a.omp_wait_policy
+    work = os.path.join(a.cache, "runs")
+    os.makedirs(work, exist_ok=True)
+    failed = []
+    if not a.skip_conventions and check_conventions.run(a.ballast, os.path.join(work, "conventions")):
+        failed.append("conventions")
+    results = []
+    for bed in a.beds.split(","):
+        path = beds.ensure(bed, a.ballast, a.cases, a.cache)
+        r = bench_bed(bed, path, getattr(a, f"steps_{bed}"), a, work)
+        results.append(r)
+        if not r["bit_identical"]:
+            failed.append(f"{bed}: bit identity")
+        if not r["physics_ok"]:
+            failed.append(f"{bed}: physics")
+    with open(os.path.join(a.cache, "results.json"), "w") as f:
+        json.dump(results, f, indent=1)
+    print(f"\nresults: {os.path.join(a.cache, 'results.json')}")
+    if failed:
+        print("bench-peers: FAILED: " + "; ".join(failed))
+        return 1
+    print("bench-peers: conventions, bit identity and physics cross-checks passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
