@@ -55,7 +55,8 @@ enum class SettleRule {
 StageReport settle(Simulation& sim, const std::string& name, double ratio, long max_steps,
                    std::ostream* log, SettleRule rule = SettleRule::kRatio);
 
-// Height of the bed's top surface over x in [x0, x1]: the highest ball top, m.
+// Height of the bed's top surface over x in [x0, x1]: the highest point of any ball
+// over that strip (the sleeper placed above it touches nothing), m.
 double bed_top(const Simulation& sim, double x0, double x1);
 
 }  // namespace ballast
