@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "engine/contact_law.hpp"
+#include "engine/work_split.hpp"
 
 namespace ballast {
 
@@ -152,10 +153,13 @@ template <bool kFriction, bool kDamped>
 void contact_pass(const BallStore& balls, const BodyStore& bodies, const PairTable& pairs,
                   const std::vector<Wall>& walls, const ForceSettings& s, ContactList& bc,
                   ContactList& wc, std::vector<Wrench>& a_side) {
-  const Index n = balls.size();
   const bool has_walls = wc.size() > 0;
-#pragma omp for schedule(static) nowait
-  for (Index i = 0; i < n; ++i) {
+  // Each thread takes a share of balls holding about the same number of contacts
+  // (a contact costs about as much as two balls' bookkeeping): work_split.hpp.
+  const auto [lo, hi] = balanced_range(balls.size(), [&](Index i) {
+    return 2L * (bc.a_first[i] + (has_walls ? wc.a_first[i] : 0)) + i;
+  });
+  for (Index i = lo; i < hi; ++i) {
     const V3 x = load(balls.position[i]);
     const double r = balls.radius[i];
     V3 f{0.0, 0.0, 0.0}, t{0.0, 0.0, 0.0};

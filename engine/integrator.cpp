@@ -6,6 +6,7 @@
 
 #include "engine/forces.hpp"
 #include "engine/v3.hpp"
+#include "engine/work_split.hpp"
 
 namespace ballast {
 
@@ -97,15 +98,18 @@ template <bool kDamped>
 void integrate(const IntegratorSettings& s, const ContactList& ball_contacts,
                const std::vector<Wrench>& a_side, const std::vector<Vec3>& reference,
                BodyStore& bodies, BallStore& balls, IntegrationReport& report) {
-  const Index n = bodies.size();
   ThreadReport mine;
+  // Shares of bodies by work (work_split.hpp): a body costs its integration, its
+  // balls and the side-b contacts it gathers.
+  const auto [lo, hi] = balanced_range(bodies.size(), [&](Index b) {
+    const Index first = b < bodies.size() ? bodies.first_ball[b] : balls.size();
+    return long(first) + ball_contacts.b_first[first] + 4L * b;
+  });
   if (s.local_damping > 0.0) {
-#pragma omp for schedule(static) nowait
-    for (Index b = 0; b < n; ++b)
+    for (Index b = lo; b < hi; ++b)
       step_body<true>(s, ball_contacts, a_side, reference, bodies, balls, b, mine);
   } else {
-#pragma omp for schedule(static) nowait
-    for (Index b = 0; b < n; ++b)
+    for (Index b = lo; b < hi; ++b)
       step_body<false>(s, ball_contacts, a_side, reference, bodies, balls, b, mine);
   }
 
