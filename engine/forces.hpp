@@ -4,9 +4,10 @@
 // only its own balls' contacts, in a fixed order. That is what makes 1 and 2
 // threads bit-identical without atomics.
 //
-// The loops are orphaned `omp for` constructs: Simulation::step calls them inside
-// one parallel region, so a step pays one fork/join instead of one per loop.
-// Called outside a parallel region they simply run serially.
+// The loops are worksharing loops of their own making: each thread of the enclosing
+// parallel region takes its share of equal cost (work_split.hpp). Simulation::step
+// calls them inside one parallel region, so a step pays one fork/join instead of one
+// per loop. Called outside a parallel region they simply run serially.
 #pragma once
 
 #include <vector>
@@ -29,9 +30,10 @@ struct ForceSettings {
 // The force pass: every candidate contact is evaluated once, by the ball that is its
 // side a (contact_list.hpp explains the layout). a_side[i] receives the sum of the
 // wrenches on ball i from the contacts it is side a of, ball–ball then ball–wall, in
-// contact order; each contact stores the wrench on its side b. An orphaned
-// `omp for` over balls without a barrier (`nowait`): inside a parallel region the
-// caller must put `#pragma omp barrier` before anything reads the results.
+// contact order; each contact stores the wrench on its side b. Each thread takes a
+// share of the balls (work_split.hpp) and there is no barrier at the end: inside a
+// parallel region the caller must put `#pragma omp barrier` before anything reads
+// the results.
 void compute_contacts(const BallStore& balls, const BodyStore& bodies, const PairTable& pairs,
                       const std::vector<Wall>& walls, const ForceSettings& s,
                       ContactList& ball_contacts, ContactList& wall_contacts,

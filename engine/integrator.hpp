@@ -35,11 +35,11 @@ struct IntegrationReport {
 
 // Gathers each body's contact forces (forces.hpp: its balls' a-side sums `a_side` and
 // the b-side wrenches of `ball_contacts`), advances it by one step and re-places its
-// balls. `reference` holds ball
-// positions at the last neighbour build, for the skin criterion. Written as an
-// orphaned worksharing loop: call it from inside a parallel region (all threads)
-// or outside one (serial). `report` must be shared by the threads and start as
-// IntegrationReport{}; it is complete when the call returns.
+// balls. `reference` holds ball positions at the last neighbour build, for the skin
+// criterion. Each thread takes a share of the bodies (work_split.hpp): call it from
+// inside a parallel region (all threads) or outside one (serial). `report` must be
+// shared by the threads and start as IntegrationReport{}; it is complete when the
+// call returns.
 void integrate(const IntegratorSettings& s, const ContactList& ball_contacts,
                const std::vector<Wrench>& a_side, const std::vector<Vec3>& reference,
                BodyStore& bodies, BallStore& balls, IntegrationReport& report);
