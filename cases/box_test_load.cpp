@@ -103,7 +103,9 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, s
   for (long k = 0; k < s.max_stage_steps && sim.servos()[servo_id].measured_force < 0.95 * preload;
        ++k)
     sim.step();
-  out.stages.push_back(settle(sim, "preload", s.equilibrium_ratio, s.max_stage_steps, log));
+  out.stages.push_back(settle(sim, "preload", s.equilibrium_ratio, s.max_stage_steps, log,
+                              SettleRule::kSeated,
+                              [&sim, wall] { return -sim.walls()[wall].displacement.z(); }));
 
   // Cycles: F(t) = (Fmin + Fmax)/2 − (Fmax − Fmin)/2·cos(2πf(t − t0)).
   const double t0 = sim.time();
@@ -144,7 +146,7 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, s
   out.stages.push_back(
       {"cycle", sim.step_count() - step0, sim.time() - t0,
        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-       sim.unbalanced_force_ratio(), true});
+       sim.unbalanced_force_ratio(), true, ""});
   out.rms_force_error = samples ? std::sqrt(err2 / samples) : 0.0;
   out.after = snapshot_contacts(sim);
   out.position_end = sim.bodies().position;

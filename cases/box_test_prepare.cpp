@@ -32,8 +32,8 @@ void print(std::ostream* log, const StageReport& r, const Simulation& sim) {
                 "  %-10s %8ld steps %8.4f s simulated %7.1f s wall  unbalanced %.1e%s  "
                 "contacts %ld  Z %.2f\n",
                 r.name.c_str(), r.steps, r.simulated, r.seconds, r.unbalanced,
-                r.settled ? "" : " (step limit)", c.ball_contacts + c.wall_contacts,
-                c.coordination);
+                r.ended_by.empty() ? "" : (" (" + r.ended_by + ")").c_str(),
+                c.ball_contacts + c.wall_contacts, c.coordination);
   *log << line << std::flush;
 }
 
@@ -86,7 +86,8 @@ StageReport grow(Simulation& sim, const std::string& name, double from, double s
     sim.set_size_scale(from + (1.0 - from) * double(k) / double(steps));
     sim.step();
   }
-  StageReport r{name, steps, sim.time() - t0, elapsed(start), sim.unbalanced_force_ratio(), true};
+  StageReport r{name, steps, sim.time() - t0, elapsed(start), sim.unbalanced_force_ratio(),
+                true, ""};
   print(log, r, sim);
   return r;
 }
@@ -94,31 +95,52 @@ StageReport grow(Simulation& sim, const std::string& name, double from, double s
 }  // namespace
 
 StageReport settle(Simulation& sim, const std::string& name, double ratio, long max_steps,
-                   std::ostream* log, SettleRule rule) {
+                   std::ostream* log, SettleRule rule, const std::function<double()>& depth) {
   const auto start = std::chrono::steady_clock::now();
   const double t0 = sim.time();
   // kKinetic: at rest when the kinetic energy is below 1e-4 of the bed's potential
-  // energy above the base (a frictionless bed never reaches a low force ratio:
-  // its rattlers and sliding contacts keep it near 0.3).
+  // energy above the base (a frictionless bed never reaches a low force ratio: its
+  // rattlers and sliding contacts keep it near 0.3-0.6).
   double potential = 0.0;
   for (Index b = 0; b < sim.bodies().size(); ++b)
     potential += sim.bodies().mass[b] * -sim.settings().gravity.z() *
                  std::max(0.0, sim.bodies().position[b].z());
-  StageReport r{name};
+  // kSeated: the sleeper's depth at the end of the last window and its creep over it.
+  const long window = std::max(2000L, std::lround(kSettleWindow / sim.dt()));
+  double depth_then = rule == SettleRule::kSeated ? depth() : 0.0, creep_then = 0.0;
+  long windows = 0;
+  StageReport r{name, 0, 0.0, 0.0, 0.0, false, "step limit"};
   for (r.steps = 1; r.steps <= max_steps; ++r.steps) {
     sim.step();
+    if (rule == SettleRule::kSeated && r.steps % window == 0) {
+      // Steady creep: what creep remains goes on however long the seating lasts, and
+      // the load cycle measures its settlement from where the seating ends.
+      const double now = depth(), creep = now - depth_then;
+      const bool steady = ++windows >= 2 && creep_then > 0.0 && creep >= kSteadyCreep * creep_then;
+      depth_then = now;
+      creep_then = creep;
+      if (steady && sim.unbalanced_force_ratio() < kQuasiStaticRatio) {
+        r.ended_by = "steady creep";
+        break;
+      }
+    }
     if (r.steps < 2000 || r.steps % 500 != 0) continue;
-    // kRatio: the unbalanced-force ratio, and a bed without contacts is falling,
-    // not balanced.
-    const bool rest = rule == SettleRule::kKinetic
-                          ? sim.energy().kinetic() < 1e-4 * potential
-                          : sim.unbalanced_force_ratio() < ratio &&
-                                2 * sim.contacts().ball_contacts >= sim.bodies().size();
-    if (rest) {
-      r.settled = true;
+    if (rule == SettleRule::kKinetic) {
+      if (sim.energy().kinetic() < 1e-4 * potential) {
+        r.ended_by = "at rest";
+        break;
+      }
+      continue;
+    }
+    // kRatio and kSeated: the unbalanced-force ratio, and a bed without contacts is
+    // falling, not balanced.
+    if (sim.unbalanced_force_ratio() < ratio &&
+        2 * sim.contacts().ball_contacts >= sim.bodies().size()) {
+      r.ended_by = "equilibrium";
       break;
     }
   }
+  r.settled = r.ended_by != "step limit";
   r.steps = std::min(r.steps, max_steps);
   r.simulated = sim.time() - t0;
   r.seconds = elapsed(start);

@@ -10,9 +10,12 @@
 // A scene with a packing file (BoxTestScene::packing_file) skips stages 1-2: the
 // imported bed stands for the prepared sample, in the box without its lid.
 // Every settling stage ends when the unbalanced-force ratio falls below the scene's
-// equilibrium_ratio (checked every 500 steps) or after max_stage_steps.
+// equilibrium_ratio (checked every 500 steps) or after max_stage_steps; the
+// frictionless settling and the seating of the sleeper have rules of their own
+// (SettleRule), because neither reaches a low ratio (docs/BOX_TEST.md, "Stopping rules").
 #pragma once
 
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -29,7 +32,10 @@ struct StageReport {
   double simulated = 0.0;   // s
   double seconds = 0.0;     // wall-clock s
   double unbalanced = 0.0;  // ratio at the end
-  bool settled = false;     // ended by the equilibrium rule, not the step limit
+  bool settled = false;     // ended by its rule, not the step limit
+  // What ended a settling stage: "equilibrium", "at rest", "steady creep"
+  // or "step limit"; empty for a stage of fixed length (growth, the load cycle).
+  std::string ended_by;
 };
 
 struct PreparedBed {
@@ -48,12 +54,24 @@ PreparedBed prepare_box_test(const BoxTestScene& scene, std::ostream* log);
 enum class SettleRule {
   kRatio,    // unbalanced-force ratio below `ratio`, with contacts
   kKinetic,  // kinetic energy below 1e-4 of the potential energy above the base
+  kSeated,   // the sleeper under its preload: kRatio, or the bed creeps at a steady rate
 };
 
-// Steps until the rule holds (checked every 500 steps, after at least 2,000) or
-// `max_steps` have run.
+// kSeated ends the stage when the bed is quasi-static (unbalanced-force ratio below
+// kQuasiStaticRatio) and the sleeper's settlement over the last kSettleWindow of
+// simulated time is at least kSteadyCreep of its settlement over the window before:
+// the creep no longer slows down.
+inline constexpr double kSettleWindow = 0.01;  // s
+inline constexpr double kSteadyCreep = 0.9;
+inline constexpr double kQuasiStaticRatio = 0.1;
+
+// Steps until the rule holds or `max_steps` have run. The ratio and energy rules are
+// checked every 500 steps after the first 2,000; the creep rule at the end of every
+// window from the second on. kSeated needs `depth`: how far the sleeper has moved
+// down, m.
 StageReport settle(Simulation& sim, const std::string& name, double ratio, long max_steps,
-                   std::ostream* log, SettleRule rule = SettleRule::kRatio);
+                   std::ostream* log, SettleRule rule = SettleRule::kRatio,
+                   const std::function<double()>& depth = {});
 
 // Height of the bed's top surface over x in [x0, x1]: the highest point of any ball
 // over that strip (the sleeper placed above it touches nothing), m.
