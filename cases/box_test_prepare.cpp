@@ -109,6 +109,8 @@ StageReport settle(Simulation& sim, const std::string& name, double ratio, long 
   const long window = std::max(2000L, std::lround(kSettleWindow / sim.dt()));
   double depth_then = rule == SettleRule::kSeated ? depth() : 0.0, creep_then = 0.0;
   long windows = 0;
+  // A bed without contacts is falling, not balanced, whatever its force ratio.
+  const auto touching = [&sim] { return 2 * sim.contacts().ball_contacts >= sim.bodies().size(); };
   StageReport r{name, 0, 0.0, 0.0, 0.0, false, "step limit"};
   for (r.steps = 1; r.steps <= max_steps; ++r.steps) {
     sim.step();
@@ -119,7 +121,7 @@ StageReport settle(Simulation& sim, const std::string& name, double ratio, long 
       const bool steady = ++windows >= 2 && creep_then > 0.0 && creep >= kSteadyCreep * creep_then;
       depth_then = now;
       creep_then = creep;
-      if (steady && sim.unbalanced_force_ratio() < kQuasiStaticRatio) {
+      if (steady && sim.unbalanced_force_ratio() < kQuasiStaticRatio && touching()) {
         r.ended_by = "steady creep";
         break;
       }
@@ -132,10 +134,8 @@ StageReport settle(Simulation& sim, const std::string& name, double ratio, long 
       }
       continue;
     }
-    // kRatio and kSeated: the unbalanced-force ratio, and a bed without contacts is
-    // falling, not balanced.
-    if (sim.unbalanced_force_ratio() < ratio &&
-        2 * sim.contacts().ball_contacts >= sim.bodies().size()) {
+    // kRatio and kSeated: the unbalanced-force ratio.
+    if (sim.unbalanced_force_ratio() < ratio && touching()) {
       r.ended_by = "equilibrium";
       break;
     }
