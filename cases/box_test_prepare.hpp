@@ -38,6 +38,12 @@ struct StageReport {
   std::string ended_by;
 };
 
+// What ended a stage, as the run summary and the archive record it: "fixed length" for
+// a stage without a rule.
+inline std::string ended_by(const StageReport& s) {
+  return s.ended_by.empty() ? "fixed length" : s.ended_by;
+}
+
 struct PreparedBed {
   Simulation sim;
   std::vector<StageReport> stages;

@@ -99,7 +99,7 @@ void write_box_test_result(hid_t run, const BoxTestResult& r) {
       number_attribute(g, "seconds", s.seconds);
       number_attribute(g, "unbalanced", s.unbalanced);
       number_attribute(g, "settled", static_cast<long>(s.settled));
-      string_attribute(g, "ended_by", s.ended_by.empty() ? "fixed length" : s.ended_by);
+      string_attribute(g, "ended_by", ended_by(s));
     }
   }
   {
