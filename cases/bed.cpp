@@ -57,6 +57,7 @@ Simulation make_bed(const BedOptions& o) {
   s.damping_ratio = o.damping_ratio;
   s.dt_safety = o.dt_safety;
   s.rotation = o.rotation;
+  s.sphere_fast_path = o.sphere_fast_path;
   s.log = o.log;
   Simulation sim(s);
   // Balls and side walls share one material; the base is rubber or the same.

@@ -1,6 +1,7 @@
 #include "engine/forces.hpp"
 
 #include <cmath>
+#include <cstdint>
 
 #include "engine/contact_law.hpp"
 #include "engine/work_split.hpp"
@@ -9,10 +10,58 @@ namespace ballast {
 
 namespace {
 
+// Raw pointers to the arrays the pass reads and writes, taken once per pass. Reached
+// through the containers, every store into a contact's `active` byte (a char type,
+// which may alias anything) made the compiler reload the data pointer of every
+// vector the next contact reads.
+struct BallView {
+  const Vec3* position;
+  const double* radius;
+  const Index* body;
+  const Index* material;
+};
+
+struct BodyView {
+  const Vec3* position;
+  const Vec3* velocity;
+  const Vec3* angular_velocity;
+  const double* mass;
+  const std::uint8_t* is_sphere;
+};
+
+struct ContactView {
+  const Index* b;
+  const Index* a_first;
+  Vec3* shear_force;  // null in a frictionless scene
+  Wrench* b_wrench;
+  double* normal_force;
+  double* slip_total;
+  double* viscous_total;
+  std::uint8_t* active;
+};
+
+BallView view(const BallStore& s) {
+  return {s.position.data(), s.radius.data(), s.body.data(), s.material.data()};
+}
+BodyView view(const BodyStore& s) {
+  return {s.position.data(), s.velocity.data(), s.angular_velocity.data(), s.mass.data(),
+          s.is_sphere.data()};
+}
+ContactView view(ContactList& c) {
+  return {c.b.data(),
+          c.a_first.data(),
+          c.shear_force.data(),
+          c.b_wrench.data(),
+          c.normal_force.data(),
+          c.slip_total.data(),
+          c.viscous_total.data(),
+          c.active.data()};
+}
+
 // A contact whose entities no longer overlap: PFC drops its shear force. Its b-side
 // wrench goes to zero so that the gather may add the contact blindly.
 template <bool kFriction>
-[[gnu::always_inline]] inline void open_contact(ContactList& cl, Index c) {
+[[gnu::always_inline]] inline void open_contact(const ContactView& cl, Index c) {
   if (!cl.active[c]) return;
   cl.active[c] = 0;
   cl.b_wrench[c] = Wrench{Vec3::Zero(), Vec3::Zero()};
@@ -22,7 +71,7 @@ template <bool kFriction>
 
 // Bookkeeping every touching contact does: flags, elastic normal force, energy.
 template <bool kDamped>
-[[gnu::always_inline]] inline void record(ContactList& cl, Index c, const ContactResult& r) {
+[[gnu::always_inline]] inline void record(const ContactView& cl, Index c, const ContactResult& r) {
   cl.active[c] = 1;
   cl.normal_force[c] = r.normal_force;
   // Slip work is zero unless the contact slides, which is rare once a bed settles.
@@ -30,13 +79,13 @@ template <bool kDamped>
   if constexpr (kDamped) cl.viscous_total[c] += r.viscous_work;
 }
 
-[[gnu::always_inline]] inline V3 velocity_at(const BodyStore& bodies, Index b, const V3& arm) {
+[[gnu::always_inline]] inline V3 velocity_at(const BodyView& bodies, Index b, const V3& arm) {
   return load(bodies.velocity[b]) + cross(load(bodies.angular_velocity[b]), arm);
 }
 
 template <bool kFriction, bool kDamped>
-[[gnu::always_inline]] inline ContactResult evaluate(ContactList& cl, Index c, ContactState& st,
-                                                     const PairProperties& pp,
+[[gnu::always_inline]] inline ContactResult evaluate(const ContactView& cl, Index c,
+                                                     ContactState& st, const PairProperties& pp,
                                                      const ForceSettings& s, double m_eff) {
   st.kn = pp.kn;
   st.ks = pp.ks;
@@ -56,11 +105,13 @@ template <bool kFriction, bool kDamped>
 }
 
 // Ball–ball contact c, seen from its side a (ball i). Adds the wrench on i to
-// (f, t) and stores the wrench on b.
-template <bool kFriction, bool kDamped>
-[[gnu::always_inline]] inline void ball_ball(const BallStore& balls, const BodyStore& bodies,
+// (f, t) and stores the wrench on b. kSpheres: every body is one ball and ball k
+// is body k (ForceSettings::all_spheres), so neither the owners nor the sphere
+// flags are read and the clump path is not compiled in.
+template <bool kFriction, bool kDamped, bool kSpheres>
+[[gnu::always_inline]] inline void ball_ball(const BallView& balls, const BodyView& bodies,
                                              const PairTable& pairs, const ForceSettings& s,
-                                             ContactList& cl, Index c, Index i, const V3& xi,
+                                             const ContactView& cl, Index c, Index i, const V3& xi,
                                              double ri, V3& f, V3& t) {
   const Index j = cl.b[c];
   const V3 xj = load(balls.position[j]);
@@ -75,7 +126,7 @@ template <bool kFriction, bool kDamped>
   const double dist = std::sqrt(dist2);
   const V3 normal = (1.0 / dist) * d;  // from j towards i
   const double overlap = reach - dist;
-  const Index bi = balls.body[i], bj = balls.body[j];
+  const Index bi = kSpheres ? i : balls.body[i], bj = kSpheres ? j : balls.body[j];
   double m_eff = 0.0;
   if constexpr (kDamped)
     m_eff = bodies.mass[bi] * bodies.mass[bj] / (bodies.mass[bi] + bodies.mass[bj]);
@@ -85,7 +136,7 @@ template <bool kFriction, bool kDamped>
   st.normal = normal;
   // The contact point sits mid-overlap: li from i's centre, lj from j's.
   const double li = ri - 0.5 * overlap, lj = rj - 0.5 * overlap;
-  if (bodies.is_sphere[bi] && bodies.is_sphere[bj]) {
+  if (kSpheres || (bodies.is_sphere[bi] && bodies.is_sphere[bj])) {
     // Two spheres: both lever arms lie along the normal (−li·n and +lj·n), so one
     // cross product gives the relative spin velocity and one both moments.
     st.vrel = (load(bodies.velocity[bi]) - load(bodies.velocity[bj])) -
@@ -99,24 +150,26 @@ template <bool kFriction, bool kDamped>
     store(cl.b_wrench[c].torque, (-lj) * nxf);
     return;
   }
-  // A clump's ball: lever arms from each body's centre of mass to the contact point.
-  const V3 p = xj + lj * normal;
-  const V3 arm_i = p - load(bodies.position[bi]), arm_j = p - load(bodies.position[bj]);
-  st.vrel = velocity_at(bodies, bi, arm_i) - velocity_at(bodies, bj, arm_j);
-  const ContactResult r = evaluate<kFriction, kDamped>(cl, c, st, pp, s, m_eff);
-  f += r.force;
-  t += cross(arm_i, r.force);
-  const V3 minus = -r.force;
-  store(cl.b_wrench[c].force, minus);
-  store(cl.b_wrench[c].torque, cross(arm_j, minus));
+  if constexpr (!kSpheres) {
+    // A clump's ball: lever arms from each body's centre of mass to the contact point.
+    const V3 p = xj + lj * normal;
+    const V3 arm_i = p - load(bodies.position[bi]), arm_j = p - load(bodies.position[bj]);
+    st.vrel = velocity_at(bodies, bi, arm_i) - velocity_at(bodies, bj, arm_j);
+    const ContactResult r = evaluate<kFriction, kDamped>(cl, c, st, pp, s, m_eff);
+    f += r.force;
+    t += cross(arm_i, r.force);
+    const V3 minus = -r.force;
+    store(cl.b_wrench[c].force, minus);
+    store(cl.b_wrench[c].torque, cross(arm_j, minus));
+  }
 }
 
 // Ball–wall contact c of ball i. Adds the wrench on i to (f, t) and stores the force
 // on the wall.
-template <bool kFriction, bool kDamped>
-[[gnu::always_inline]] inline void ball_wall(const BallStore& balls, const BodyStore& bodies,
+template <bool kFriction, bool kDamped, bool kSpheres>
+[[gnu::always_inline]] inline void ball_wall(const BallView& balls, const BodyView& bodies,
                                              const PairTable& pairs, const std::vector<Wall>& walls,
-                                             const ForceSettings& s, ContactList& cl, Index c,
+                                             const ForceSettings& s, const ContactView& cl, Index c,
                                              Index i, const V3& x, double r, V3& f, V3& t) {
   const Wall& w = walls[cl.b[c]];
   double overlap;
@@ -136,7 +189,7 @@ template <bool kFriction, bool kDamped>
     open_contact<kFriction>(cl, c);
     return;
   }
-  const Index bi = balls.body[i];
+  const Index bi = kSpheres ? i : balls.body[i];
   const V3 arm = point - load(bodies.position[bi]);
   ContactState st;
   st.overlap = overlap;
@@ -149,14 +202,18 @@ template <bool kFriction, bool kDamped>
   store(cl.b_wrench[c].force, -res.force);
 }
 
-template <bool kFriction, bool kDamped>
-void contact_pass(const BallStore& balls, const BodyStore& bodies, const PairTable& pairs,
-                  const std::vector<Wall>& walls, const ForceSettings& s, ContactList& bc,
-                  ContactList& wc, std::vector<Wrench>& a_side) {
-  const bool has_walls = wc.size() > 0;
+template <bool kFriction, bool kDamped, bool kSpheres>
+void contact_pass(const BallStore& ball_store, const BodyStore& body_store, const PairTable& pairs,
+                  const std::vector<Wall>& walls, const ForceSettings& s, ContactList& bc_list,
+                  ContactList& wc_list, std::vector<Wrench>& a_side_store) {
+  const bool has_walls = wc_list.size() > 0;
+  const BallView balls = view(ball_store);
+  const BodyView bodies = view(body_store);
+  const ContactView bc = view(bc_list), wc = view(wc_list);
+  Wrench* const a_side = a_side_store.data();
   // Each thread takes a share of balls holding about the same number of contacts
   // (a contact costs about as much as two balls' bookkeeping): work_split.hpp.
-  const auto [lo, hi] = balanced_range(balls.size(), [&](Index i) {
+  const auto [lo, hi] = balanced_range(ball_store.size(), [&](Index i) {
     return 2L * (bc.a_first[i] + (has_walls ? wc.a_first[i] : 0)) + i;
   });
   for (Index i = lo; i < hi; ++i) {
@@ -164,33 +221,47 @@ void contact_pass(const BallStore& balls, const BodyStore& bodies, const PairTab
     const double r = balls.radius[i];
     V3 f{0.0, 0.0, 0.0}, t{0.0, 0.0, 0.0};
     for (Index c = bc.a_first[i]; c < bc.a_first[i + 1]; ++c)
-      ball_ball<kFriction, kDamped>(balls, bodies, pairs, s, bc, c, i, x, r, f, t);
+      ball_ball<kFriction, kDamped, kSpheres>(balls, bodies, pairs, s, bc, c, i, x, r, f, t);
     if (has_walls)
       for (Index c = wc.a_first[i]; c < wc.a_first[i + 1]; ++c)
-        ball_wall<kFriction, kDamped>(balls, bodies, pairs, walls, s, wc, c, i, x, r, f, t);
+        ball_wall<kFriction, kDamped, kSpheres>(balls, bodies, pairs, walls, s, wc, c, i, x, r, f,
+                                                t);
     store(a_side[i].force, f);
     store(a_side[i].torque, t);
   }
 }
 
+template <bool kFriction, bool kDamped>
+void contact_pass_for(const BallStore& balls, const BodyStore& bodies, const PairTable& pairs,
+                      const std::vector<Wall>& walls, const ForceSettings& s, ContactList& bc,
+                      ContactList& wc, std::vector<Wrench>& a_side) {
+  if (s.all_spheres)
+    contact_pass<kFriction, kDamped, true>(balls, bodies, pairs, walls, s, bc, wc, a_side);
+  else
+    contact_pass<kFriction, kDamped, false>(balls, bodies, pairs, walls, s, bc, wc, a_side);
+}
+
 }  // namespace
 
-// One instantiation per combination of friction and dashpots, so that a scene
-// without either pays for neither, not even a branch per contact.
+// One instantiation per combination of friction, dashpots and sphere-only scene, so
+// that a scene pays for none of them it does not use, not even a branch per contact.
 void compute_contacts(const BallStore& balls, const BodyStore& bodies, const PairTable& pairs,
                       const std::vector<Wall>& walls, const ForceSettings& s,
                       ContactList& ball_contacts, ContactList& wall_contacts,
                       std::vector<Wrench>& a_side) {
   const bool damped = s.damping_ratio > 0.0;
   if (s.friction && damped)
-    contact_pass<true, true>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts, a_side);
+    contact_pass_for<true, true>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts,
+                                 a_side);
   else if (s.friction)
-    contact_pass<true, false>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts, a_side);
+    contact_pass_for<true, false>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts,
+                                  a_side);
   else if (damped)
-    contact_pass<false, true>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts, a_side);
+    contact_pass_for<false, true>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts,
+                                  a_side);
   else
-    contact_pass<false, false>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts,
-                               a_side);
+    contact_pass_for<false, false>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts,
+                                   a_side);
 }
 
 }  // namespace ballast

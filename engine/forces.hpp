@@ -25,6 +25,7 @@ struct ForceSettings {
   double dt = 0.0;             // s
   double damping_ratio = 0.0;  // viscous contact damping ratio β (0: none)
   bool friction = true;        // false: frictionless scene, no shear history
+  bool all_spheres = false;    // every body is one ball and ball k is body k
 };
 
 // The force pass: every candidate contact is evaluated once, by the ball that is its
@@ -60,6 +61,23 @@ inline void gather_body_force(Index body, const ContactList& bc, const std::vect
   }
   store(bodies.force[body], f);
   store(bodies.torque[body], m);
+}
+
+// gather_body_force for a sphere-only scene, where body b is ball b: the same sums
+// in the same order, without reading the body's ball range.
+inline void gather_sphere_force(Index b, const ContactList& bc, const std::vector<Wrench>& a_side,
+                                const Vec3& gravity, BodyStore& bodies) {
+  V3 f = bodies.mass[b] * load(gravity);
+  V3 m{0.0, 0.0, 0.0};
+  f += load(a_side[b].force);
+  m += load(a_side[b].torque);
+  for (Index e = bc.b_first[b]; e < bc.b_first[b + 1]; ++e) {
+    const Wrench& w = bc.b_wrench[bc.b_contact[e]];
+    f += load(w.force);
+    m += load(w.torque);
+  }
+  store(bodies.force[b], f);
+  store(bodies.torque[b], m);
 }
 
 // Velocity of a body's material point at world position p (half-step velocities).

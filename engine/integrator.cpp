@@ -28,14 +28,19 @@ struct ThreadReport {
 };
 
 // One body, one step. kDamped: local damping on (α > 0), a template argument so
-// that undamped scenes carry no test for it per body.
-template <bool kDamped>
+// that undamped scenes carry no test for it per body. kSpheres: a scene of spheres
+// only (IntegratorSettings::all_spheres), where body b is ball b and the clump path
+// is not compiled in.
+template <bool kDamped, bool kSpheres>
 [[gnu::always_inline]] inline void step_body(const IntegratorSettings& s, const ContactList& bc,
                                              const std::vector<Wrench>& a_side,
                                              const std::vector<Vec3>& reference, BodyStore& bodies,
                                              BallStore& balls, Index b, ThreadReport& out) {
   const double dt = s.dt, alpha = s.local_damping;
-  gather_body_force(b, bc, a_side, s.gravity, bodies);
+  if constexpr (kSpheres)
+    gather_sphere_force(b, bc, a_side, s.gravity, bodies);
+  else
+    gather_body_force(b, bc, a_side, s.gravity, bodies);
   const double m = bodies.mass[b];
   const V3 f_raw = load(bodies.force[b]), m_raw = load(bodies.torque[b]);
   const V3 v_old = load(bodies.velocity[b]), w_old = load(bodies.angular_velocity[b]);
@@ -48,10 +53,10 @@ template <bool kDamped>
   store(bodies.position[b], x_new);
 
   V3 w_new;
-  const bool sphere = bodies.is_sphere[b];
+  const bool sphere = kSpheres || bodies.is_sphere[b];
   if (sphere) {
     w_new = w_old + (dt * bodies.inv_inertia[b][0]) * torque;
-  } else {
+  } else if constexpr (!kSpheres) {
     Vec3 t;
     store(t, torque);
     RotationState rs{bodies.orientation[b], bodies.angular_velocity[b], bodies.angular_momentum[b]};
@@ -74,12 +79,13 @@ template <bool kDamped>
     bodies.damping_dissipated[b] -= dt * (dot(f - f_raw, v_mid) + dot(torque - m_raw, w_mid));
 
   // Re-place the balls and measure how far they moved since the neighbour build.
-  const Index first = bodies.first_ball[b], last = first + bodies.ball_count[b];
+  const Index first = kSpheres ? b : bodies.first_ball[b];
   if (sphere) {
     store(balls.position[first], x_new);
     const V3 moved = x_new - load(reference[first]);
     out.shift2 = std::max(out.shift2, dot(moved, moved));
-  } else {
+  } else if constexpr (!kSpheres) {
+    const Index last = first + bodies.ball_count[b];
     const Mat3 rot = bodies.orientation[b].toRotationMatrix();
     for (Index k = first; k < last; ++k) {
       balls.position[k] = bodies.position[b] + rot * balls.offset[k];
@@ -91,6 +97,14 @@ template <bool kDamped>
   if (!std::isfinite(speed2) || !std::isfinite(dot(w_new, w_new)) ||
       speed2 > s.max_speed * s.max_speed)
     out.bad = std::min(out.bad, b);
+}
+
+template <bool kDamped, bool kSpheres>
+void step_bodies(const IntegratorSettings& s, const ContactList& bc,
+                 const std::vector<Wrench>& a_side, const std::vector<Vec3>& reference,
+                 BodyStore& bodies, BallStore& balls, Index lo, Index hi, ThreadReport& out) {
+  for (Index b = lo; b < hi; ++b)
+    step_body<kDamped, kSpheres>(s, bc, a_side, reference, bodies, balls, b, out);
 }
 
 }  // namespace
@@ -105,16 +119,17 @@ void integrate(const IntegratorSettings& s, const ContactList& ball_contacts,
     const Index first = b < bodies.size() ? bodies.first_ball[b] : balls.size();
     return long(first) + ball_contacts.b_first[first] + 4L * b;
   });
-  if (s.local_damping > 0.0) {
-    for (Index b = lo; b < hi; ++b)
-      step_body<true>(s, ball_contacts, a_side, reference, bodies, balls, b, mine);
-  } else {
-    for (Index b = lo; b < hi; ++b)
-      step_body<false>(s, ball_contacts, a_side, reference, bodies, balls, b, mine);
-  }
+  if (s.local_damping > 0.0 && s.all_spheres)
+    step_bodies<true, true>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
+  else if (s.local_damping > 0.0)
+    step_bodies<true, false>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
+  else if (s.all_spheres)
+    step_bodies<false, true>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
+  else
+    step_bodies<false, false>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
 
-  // Per-thread results combined with max/min: exact in any order, so the report
-  // does not depend on the thread count.
+    // Per-thread results combined with max/min: exact in any order, so the report
+    // does not depend on the thread count.
 #pragma omp critical(ballast_integrate_report)
   {
     report.max_ball_shift2 = std::max(report.max_ball_shift2, mine.shift2);

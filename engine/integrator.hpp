@@ -25,6 +25,7 @@ struct IntegratorSettings {
   Vec3 gravity = Vec3::Zero();  // m/s², only for the energy ledger (force already has m·g)
   double max_speed = 100.0;     // m/s; faster is treated as a blow-up
   RotationIntegrator rotation = RotationIntegrator::kPfc;  // for clumps
+  bool all_spheres = false;  // every body is one ball and ball k is body k
 };
 
 struct IntegrationReport {

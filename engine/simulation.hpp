@@ -42,6 +42,10 @@ struct SimulationSettings {
   double max_speed = 100.0;              // m/s; a body faster than this means blow-up
   std::string contact_model = "linear";  // a name from kContactModels (contact_law.hpp)
   RotationIntegrator rotation = RotationIntegrator::kPfc;  // clumps: "pfc" or "full"
+  // A scene of spheres only takes the force pass's and the integrator's sphere path
+  // (same sums in the same order, so the same bits); false forces the general path,
+  // for the test and the benchmark that compare the two.
+  bool sphere_fast_path = true;
   std::ostream* log = nullptr;  // where the start-up report goes (nullptr: silent)
 };
 
@@ -73,6 +77,8 @@ class Simulation {
   // momentum from its current ω.
   void set_rotation_integrator(RotationIntegrator r);
   void set_local_damping(double alpha);
+  // SimulationSettings::sphere_fast_path; takes effect at the next step.
+  void set_sphere_fast_path(bool on);
   void set_damping_ratio(double beta);  // viscous contact damping; dt follows at next build
   void set_material_friction(Index material, double mu);
   void set_wall_friction(Index wall, double mu);
@@ -159,6 +165,7 @@ class Simulation {
   double time_ = 0.0, dt_ = 0.0, skin_ = 0.0, max_radius_ = 0.0;
   long steps_ = 0, builds_ = 0;
   bool prepared_ = false, friction_ = false, needs_rebuild_ = false, pairs_stale_ = true;
+  bool all_spheres_ = false;  // set by prepare(): ForceSettings::all_spheres
 };
 
 }  // namespace ballast

@@ -6,7 +6,8 @@
 // 700 × 300 mm box, kn = ks = 5.08e9 N/m, mu = 0.5, gravity, PFC local damping —
 // stepped on 1 and 2 threads. The counter ball_steps/s is the figure of merit;
 // compare the two thread counts from one run (the machine is shared and noisy).
-// The random_order:1 variants number the same bed's bodies at random.
+// The random_order:1 variants number the same bed's bodies at random; fast_path:0
+// runs the general (clump-capable) path on the same spheres.
 //
 // EnergyDrift: what a larger timestep costs in accuracy. 300 undamped frictional
 // spheres fall into the box at 10 g for 0.05 s; drift is |energy balance| over the
@@ -27,6 +28,7 @@ void DenseBed(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   omp_set_num_threads(threads);
   Simulation sim = settled_dense_bed(state.range(1) == 0);
+  sim.set_sphere_fast_path(state.range(2) == 1);
   const long steps_per_iteration = 200;
   const long builds0 = sim.neighbour_builds();
   for (auto _ : state) sim.run(steps_per_iteration);
@@ -41,13 +43,17 @@ void DenseBed(benchmark::State& state) {
   omp_set_num_threads(omp_get_num_procs());
 }
 // Second argument: 0 = bodies in spatial order (as the packings give them), 1 = the
-// same bed with bodies numbered at random, to show what locality is worth.
+// same bed with bodies numbered at random, to show what locality is worth. Third:
+// 1 = the sphere-only scene's fast path (the default), 0 = the general path, to
+// show what that is worth (the two end in the same bits: test_determinism).
 BENCHMARK(DenseBed)
-    ->Args({1, 0})
-    ->Args({2, 0})
-    ->Args({1, 1})
-    ->Args({2, 1})
-    ->ArgNames({"threads", "random_order"})
+    ->Args({1, 0, 1})
+    ->Args({2, 0, 1})
+    ->Args({1, 1, 1})
+    ->Args({2, 1, 1})
+    ->Args({1, 0, 0})
+    ->Args({2, 0, 0})
+    ->ArgNames({"threads", "random_order", "fast_path"})
     ->UseRealTime()
     ->MinTime(3.0)
     ->Unit(benchmark::kMillisecond);
