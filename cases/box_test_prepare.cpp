@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <ostream>
 #include <random>
+#include <stdexcept>
 
 #include "cases/bed.hpp"
 #include "cases/packing_bodies.hpp"
@@ -96,6 +97,8 @@ StageReport grow(Simulation& sim, const std::string& name, double from, double s
 
 StageReport settle(Simulation& sim, const std::string& name, double ratio, long max_steps,
                    std::ostream* log, SettleRule rule, const std::function<double()>& depth) {
+  if (rule == SettleRule::kSeated && !depth)
+    throw std::invalid_argument("settle(): SettleRule::kSeated needs the sleeper's depth");
   const auto start = std::chrono::steady_clock::now();
   const double t0 = sim.time();
   // kKinetic: at rest when the kinetic energy is below 1e-4 of the bed's potential

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "cases/box_test_prepare.hpp"
 #include "test_helpers.hpp"
@@ -99,4 +100,10 @@ TEST(SettleRules, EveryRuleNamesWhatEndedTheStage) {
   const StageReport limit = settle(falling, "compact", 0.005, 3000, nullptr);
   EXPECT_EQ(limit.ended_by, "step limit");
   EXPECT_FALSE(limit.settled);
+}
+
+TEST(SettleRules, SeatingWithoutASleeperDepthIsRefused) {
+  Simulation sim = stack_at_rest();
+  EXPECT_THROW(settle(sim, "preload", 0.005, 1000, nullptr, SettleRule::kSeated),
+               std::invalid_argument);
 }
