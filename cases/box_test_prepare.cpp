@@ -87,8 +87,7 @@ StageReport grow(Simulation& sim, const std::string& name, double from, double s
     sim.set_size_scale(from + (1.0 - from) * double(k) / double(steps));
     sim.step();
   }
-  StageReport r{name, steps, sim.time() - t0, elapsed(start), sim.unbalanced_force_ratio(),
-                true, ""};
+  StageReport r{name, steps, sim.time() - t0, elapsed(start), sim.unbalanced_force_ratio(), ""};
   print(log, r, sim);
   return r;
 }
@@ -114,7 +113,7 @@ StageReport settle(Simulation& sim, const std::string& name, double ratio, long 
   long windows = 0;
   // A bed without contacts is falling, not balanced, whatever its force ratio.
   const auto touching = [&sim] { return 2 * sim.contacts().ball_contacts >= sim.bodies().size(); };
-  StageReport r{name, 0, 0.0, 0.0, 0.0, false, "step limit"};
+  StageReport r{name, 0, 0.0, 0.0, 0.0, "step limit"};
   for (r.steps = 1; r.steps <= max_steps; ++r.steps) {
     sim.step();
     if (rule == SettleRule::kSeated && r.steps % window == 0) {
@@ -143,7 +142,6 @@ StageReport settle(Simulation& sim, const std::string& name, double ratio, long 
       break;
     }
   }
-  r.settled = r.ended_by != "step limit";
   r.steps = std::min(r.steps, max_steps);
   r.simulated = sim.time() - t0;
   r.seconds = elapsed(start);

@@ -32,17 +32,14 @@ struct StageReport {
   double simulated = 0.0;   // s
   double seconds = 0.0;     // wall-clock s
   double unbalanced = 0.0;  // ratio at the end
-  bool settled = false;     // ended by its rule, not the step limit
   // What ended a settling stage: "equilibrium", "at rest", "steady creep"
   // or "step limit"; empty for a stage of fixed length (growth, the load cycle).
   std::string ended_by;
+  // Ended by its rule (or of fixed length), not by the step limit.
+  bool settled() const { return ended_by != "step limit"; }
+  // What ended it, as the run summary and the archive record it.
+  std::string what_ended() const { return ended_by.empty() ? "fixed length" : ended_by; }
 };
-
-// What ended a stage, as the run summary and the archive record it: "fixed length" for
-// a stage without a rule.
-inline std::string ended_by(const StageReport& s) {
-  return s.ended_by.empty() ? "fixed length" : s.ended_by;
-}
 
 struct PreparedBed {
   Simulation sim;

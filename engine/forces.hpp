@@ -44,12 +44,15 @@ void compute_contacts(const BallStore& balls, const BodyStore& bodies, const Pai
 // a-side sums, then the b-side wrenches of the contacts its balls are side b of (an
 // open contact holds zeros, so all are added without a branch). A body's balls are
 // contiguous and so are their b entries. Fixed order, any thread count. Inline: it
-// runs once per body per step inside the integrator's loop.
+// runs once per body per step inside the integrator's loop. kSpheres: a sphere-only
+// scene, where body b is ball b, so the body's ball range is not read.
+template <bool kSpheres = false>
 inline void gather_body_force(Index body, const ContactList& bc, const std::vector<Wrench>& a_side,
                               const Vec3& gravity, BodyStore& bodies) {
   V3 f = bodies.mass[body] * load(gravity);
   V3 m{0.0, 0.0, 0.0};
-  const Index first = bodies.first_ball[body], last = first + bodies.ball_count[body];
+  const Index first = kSpheres ? body : bodies.first_ball[body];
+  const Index last = kSpheres ? body + 1 : first + bodies.ball_count[body];
   for (Index k = first; k < last; ++k) {
     f += load(a_side[k].force);
     m += load(a_side[k].torque);
@@ -61,23 +64,6 @@ inline void gather_body_force(Index body, const ContactList& bc, const std::vect
   }
   store(bodies.force[body], f);
   store(bodies.torque[body], m);
-}
-
-// gather_body_force for a sphere-only scene, where body b is ball b: the same sums
-// in the same order, without reading the body's ball range.
-inline void gather_sphere_force(Index b, const ContactList& bc, const std::vector<Wrench>& a_side,
-                                const Vec3& gravity, BodyStore& bodies) {
-  V3 f = bodies.mass[b] * load(gravity);
-  V3 m{0.0, 0.0, 0.0};
-  f += load(a_side[b].force);
-  m += load(a_side[b].torque);
-  for (Index e = bc.b_first[b]; e < bc.b_first[b + 1]; ++e) {
-    const Wrench& w = bc.b_wrench[bc.b_contact[e]];
-    f += load(w.force);
-    m += load(w.torque);
-  }
-  store(bodies.force[b], f);
-  store(bodies.torque[b], m);
 }
 
 // Velocity of a body's material point at world position p (half-step velocities).

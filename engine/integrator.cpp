@@ -37,10 +37,7 @@ template <bool kDamped, bool kSpheres>
                                              const std::vector<Vec3>& reference, BodyStore& bodies,
                                              BallStore& balls, Index b, ThreadReport& out) {
   const double dt = s.dt, alpha = s.local_damping;
-  if constexpr (kSpheres)
-    gather_sphere_force(b, bc, a_side, s.gravity, bodies);
-  else
-    gather_body_force(b, bc, a_side, s.gravity, bodies);
+  gather_body_force<kSpheres>(b, bc, a_side, s.gravity, bodies);
   const double m = bodies.mass[b];
   const V3 f_raw = load(bodies.force[b]), m_raw = load(bodies.torque[b]);
   const V3 v_old = load(bodies.velocity[b]), w_old = load(bodies.angular_velocity[b]);

@@ -98,8 +98,8 @@ void write_box_test_result(hid_t run, const BoxTestResult& r) {
       number_attribute(g, "simulated", s.simulated);
       number_attribute(g, "seconds", s.seconds);
       number_attribute(g, "unbalanced", s.unbalanced);
-      number_attribute(g, "settled", static_cast<long>(s.settled));
-      string_attribute(g, "ended_by", ended_by(s));
+      number_attribute(g, "settled", static_cast<long>(s.settled()));
+      string_attribute(g, "ended_by", s.what_ended());
     }
   }
   {

@@ -29,8 +29,8 @@ nlohmann::json run_summary_json(const BoxTestResult& r) {
                       {"simulated_s", s.simulated},
                       {"seconds", s.seconds},
                       {"unbalanced", s.unbalanced},
-                      {"settled", s.settled},
-                      {"ended_by", ended_by(s)}});
+                      {"settled", s.settled()},
+                      {"ended_by", s.what_ended()}});
   nlohmann::json j = {{"scene", r.scene_name},
                       {"bodies", r.bodies},
                       {"balls", r.balls},

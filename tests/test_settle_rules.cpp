@@ -48,7 +48,7 @@ TEST(SettleRules, SteadyCreepEndsTheSeatingAfterTwoWindows) {
   const StageReport r = settle(sim, "preload", 0.0, 20 * w, nullptr, SettleRule::kSeated,
                                [&sim] { return 1e-3 * sim.time(); });
   EXPECT_EQ(r.ended_by, "steady creep");
-  EXPECT_TRUE(r.settled);
+  EXPECT_TRUE(r.settled());
   EXPECT_EQ(r.steps, 2 * w);
 }
 
@@ -61,7 +61,7 @@ TEST(SettleRules, CreepThatStillSlowsDownRunsToTheStepLimit) {
   const StageReport r = settle(sim, "preload", 0.0, 8 * w, nullptr, SettleRule::kSeated,
                                [&sim, tau] { return 1.0 - std::exp(-sim.time() / tau); });
   EXPECT_EQ(r.ended_by, "step limit");
-  EXPECT_FALSE(r.settled);
+  EXPECT_FALSE(r.settled());
   EXPECT_EQ(r.steps, 8 * w);
 }
 
@@ -99,7 +99,7 @@ TEST(SettleRules, EveryRuleNamesWhatEndedTheStage) {
   falling.add_sphere(Vec3::Zero(), kR, kRho, 0);
   const StageReport limit = settle(falling, "compact", 0.005, 3000, nullptr);
   EXPECT_EQ(limit.ended_by, "step limit");
-  EXPECT_FALSE(limit.settled);
+  EXPECT_FALSE(limit.settled());
 }
 
 TEST(SettleRules, SeatingWithoutASleeperDepthIsRefused) {

@@ -32,7 +32,7 @@ const json kScene = json::parse(R"({"name": "s", "particles": {"count": 2}})");
 BoxTestResult synthetic_result() {
   BoxTestResult r;
   r.scene_name = "s";
-  r.stages = {{"expand", 100, 0.01, 0.5, 0.2, true, ""}, {"cycle", 300, 0.03, 1.5, 0.01, true, ""}};
+  r.stages = {{"expand", 100, 0.01, 0.5, 0.2, ""}, {"cycle", 300, 0.03, 1.5, 0.01, ""}};
   r.bodies = 2;
   r.balls = 3;
   r.loaded = true;
