@@ -58,8 +58,9 @@ template <bool kFriction, bool kDamped>
     // The rescale factor is 1/√(1 − q), q = off_plane²/old_mag2: the normal turns by
     // √q radians in a step. Below q = 2⁻⁵⁴ the factor is 1 + q/2 < 1 + 2⁻⁵⁵, which
     // rounds to exactly 1, so the square root and division are skipped. In a settled
-    // bed that is nearly every contact (the normal turns ~1e-9 rad per µs step), and
-    // the skip took 6 % off the sphere bench bed's step (docs/PERFORMANCE.md).
+    // bed that is nearly every contact (the normal turns ~1e-9 rad per µs step): the
+    // skip saves 3.3 % of the instructions of a sphere ball-step; the time it saves
+    // is below this host's noise (docs/PERFORMANCE.md, "What bought what").
     if (off_plane * off_plane > 0x1p-54 * old_mag2) {
       const double new_mag2 = dot(shear_force, shear_force);
       if (new_mag2 > 0.0) shear_force = std::sqrt(old_mag2 / new_mag2) * shear_force;
