@@ -116,10 +116,14 @@ void Simulation::set_rotation_integrator(RotationIntegrator r) {
 
 void Simulation::set_sphere_fast_path(bool on) {
   settings_.sphere_fast_path = on;
+  refresh_all_spheres();
+}
+
+void Simulation::refresh_all_spheres() {
   // A scene of spheres only, added in order (ball k is body k), takes the force
   // pass's and the integrator's sphere path, which reads neither ball owners nor
   // sphere flags (forces.cpp, integrator.cpp).
-  all_spheres_ = on;
+  all_spheres_ = settings_.sphere_fast_path;
   for (Index b = 0; b < bodies_.size() && all_spheres_; ++b)
     all_spheres_ = bodies_.is_sphere[b] && bodies_.first_ball[b] == b;
 }
@@ -220,7 +224,7 @@ void Simulation::set_size_scale(double scale) {
   const Index n = balls_.size();
   double shift2 = 0.0;
   // Every step of a radius expansion comes here, for every ball (63,810 in a Sample 2
-  // bed), so the loop shares the threads of the step. Each ball is its own work and
+  // bed), so the loop runs on the step's threads. Each ball is its own work and
   // max is exact in any order: the result does not depend on the thread count.
 #pragma omp parallel for schedule(static) reduction(max : shift2)
   for (Index k = 0; k < n; ++k) {
@@ -292,7 +296,7 @@ void Simulation::prepare() {
   }
   rebuild_neighbours();
   update_timestep();
-  set_sphere_fast_path(settings_.sphere_fast_path);
+  refresh_all_spheres();
   prepared_ = true;
   needs_rebuild_ = false;
   const double ratio = dt_ / estimate_.critical;

@@ -138,6 +138,8 @@ class Simulation {
   void validate() const;
   void rebuild_neighbours();
   void update_timestep();
+  // all_spheres_ from the bodies and settings_.sphere_fast_path (prepare() and the setter).
+  void refresh_all_spheres();
   void sum_wall_forces();
   void drive_walls();
   bool scene_has_friction() const;
@@ -165,7 +167,7 @@ class Simulation {
   double time_ = 0.0, dt_ = 0.0, skin_ = 0.0, max_radius_ = 0.0;
   long steps_ = 0, builds_ = 0;
   bool prepared_ = false, friction_ = false, needs_rebuild_ = false, pairs_stale_ = true;
-  bool all_spheres_ = false;  // set by prepare(): ForceSettings::all_spheres
+  bool all_spheres_ = false;  // ForceSettings::all_spheres, from refresh_all_spheres()
 };
 
 }  // namespace ballast
