@@ -58,6 +58,7 @@ Simulation make_bed(const BedOptions& o) {
   s.dt_safety = o.dt_safety;
   s.rotation = o.rotation;
   s.sphere_fast_path = o.sphere_fast_path;
+  s.skip_far_candidates = o.skip_far_candidates;
   s.log = o.log;
   Simulation sim(s);
   // Balls and side walls share one material; the base is rubber or the same.

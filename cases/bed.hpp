@@ -42,7 +42,8 @@ struct BedOptions {
   std::optional<ClumpParams> clumps;
   ClumpMassOptions mass;
   RotationIntegrator rotation = RotationIntegrator::kPfc;
-  bool sphere_fast_path = true;  // SimulationSettings::sphere_fast_path
+  bool sphere_fast_path = true;     // SimulationSettings::sphere_fast_path
+  bool skip_far_candidates = true;  // SimulationSettings::skip_far_candidates
   // Where the particles go (e.g. the centres of a settled sphere bed); empty: a loose
   // random cloud of `count` particles.
   std::vector<Vec3> centres;

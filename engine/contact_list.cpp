@@ -1,5 +1,8 @@
 #include "engine/contact_list.hpp"
 
+#include <cmath>
+#include <limits>
+
 namespace ballast {
 
 void ContactList::rebuild(std::vector<Index>&& new_a, std::vector<Index>&& new_b, bool keep_history,
@@ -26,6 +29,7 @@ void ContactList::rebuild(std::vector<Index>&& new_a, std::vector<Index>&& new_b
   slip_total.assign(n, 0.0);
   viscous_total.assign(n, 0.0);
   active.assign(n, 0);
+  gap_at_build.assign(n, -std::numeric_limits<float>::infinity());
 
   // Side a: the list is sorted by a, so each ball's contacts are one range.
   a_first.assign(n_balls + 1, 0);
@@ -40,6 +44,17 @@ void ContactList::rebuild(std::vector<Index>&& new_a, std::vector<Index>&& new_b
   b_contact.resize(n);
   std::vector<Index> fill(b_first.begin(), b_first.end() - 1);
   for (std::size_t c = 0; c < n; ++c) b_contact[fill[b[c]]++] = static_cast<Index>(c);
+}
+
+void ContactList::record_build_gaps(const std::vector<Vec3>& position,
+                                    const std::vector<double>& radius) {
+  for (std::size_t c = 0; c < a.size(); ++c) {
+    const double gap = (position[a[c]] - position[b[c]]).norm() - (radius[a[c]] + radius[b[c]]);
+    float g = static_cast<float>(gap);
+    if (static_cast<double>(g) > gap)
+      g = std::nextafter(g, -std::numeric_limits<float>::infinity());
+    gap_at_build[c] = g;
+  }
 }
 
 void ContactList::flush_dissipation(std::vector<double>& friction, std::vector<double>& viscous) {

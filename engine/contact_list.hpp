@@ -26,6 +26,14 @@
 // History: the shear force is the only state carried from step to step. It lives in
 // `shear_force` and survives neighbour rebuilds by a merge on the sorted (a, b) keys.
 // A frictionless scene never allocates it.
+//
+// Far candidates: most candidates of a clump bed never touch between two builds
+// (Sample 1: 85,103 candidates, 4,472 touching). Each ball–ball candidate keeps its
+// gap at the build, g0 = |x_a − x_b| − (r_a + r_b). If no ball has moved more than D
+// since then and no radius has grown more than G, the gap now is at least g0 − 2(D + G),
+// so a candidate with g0 above that bound cannot touch and, if it was not touching
+// before, the force pass has nothing to do for it (ForceSettings::far_gap). Skipping
+// it computes nothing the full test would not have found, so the bits are the same.
 #pragma once
 
 #include <cstdint>
@@ -49,6 +57,9 @@ struct ContactList {
   std::vector<double> slip_total;     // J dissipated by Coulomb slip since the last rebuild
   std::vector<double> viscous_total;  // J dissipated by the dashpots since the last rebuild
   std::vector<std::uint8_t> active;   // 1 while overlapping
+  // m, the gap at the last build rounded down to a float (half the bytes to stream);
+  // −∞ until record_build_gaps(), which no skip test passes.
+  std::vector<float> gap_at_build;
 
   // Per ball i: its contacts as side a are a_first[i] .. a_first[i + 1] (size n_balls + 1).
   std::vector<Index> a_first;
@@ -65,6 +76,10 @@ struct ContactList {
   // for `n_balls` balls; `b_is_ball` says whether b is a ball (gets b entries).
   void rebuild(std::vector<Index>&& new_a, std::vector<Index>&& new_b, bool keep_history,
                Index n_balls, bool b_is_ball);
+
+  // Ball–ball lists: fills gap_at_build from the balls' positions (m) and radii (m)
+  // at the build, each value rounded down so that it never exceeds the true gap.
+  void record_build_gaps(const std::vector<Vec3>& position, const std::vector<double>& radius);
 
   // Adds each contact's dissipated work to the ledgers of its side-a ball (in
   // contact order, so the sums do not depend on threads) and zeroes it.

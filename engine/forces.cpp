@@ -38,6 +38,7 @@ struct ContactView {
   double* slip_total;
   double* viscous_total;
   std::uint8_t* active;
+  const float* gap_at_build;
 };
 
 BallView view(const BallStore& s) {
@@ -55,7 +56,8 @@ ContactView view(ContactList& c) {
           c.normal_force.data(),
           c.slip_total.data(),
           c.viscous_total.data(),
-          c.active.data()};
+          c.active.data(),
+          c.gap_at_build.data()};
 }
 
 // A contact whose entities no longer overlap: PFC drops its shear force. Its b-side
@@ -220,8 +222,12 @@ void contact_pass(const BallStore& ball_store, const BodyStore& body_store, cons
     const V3 x = load(balls.position[i]);
     const double r = balls.radius[i];
     V3 f{0.0, 0.0, 0.0}, t{0.0, 0.0, 0.0};
-    for (Index c = bc.a_first[i]; c < bc.a_first[i + 1]; ++c)
+    for (Index c = bc.a_first[i]; c < bc.a_first[i + 1]; ++c) {
+      // A far candidate that was not touching still is not: nothing to evaluate or
+      // clear. Two streamed loads instead of the other ball's position and radius.
+      if (!bc.active[c] && bc.gap_at_build[c] > s.far_gap) continue;
       ball_ball<kFriction, kDamped, kSpheres>(balls, bodies, pairs, s, bc, c, i, x, r, f, t);
+    }
     if (has_walls)
       for (Index c = wc.a_first[i]; c < wc.a_first[i + 1]; ++c)
         ball_wall<kFriction, kDamped, kSpheres>(balls, bodies, pairs, walls, s, wc, c, i, x, r, f,

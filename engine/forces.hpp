@@ -10,6 +10,7 @@
 // per loop. Called outside a parallel region they simply run serially.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "engine/ball_store.hpp"
@@ -26,6 +27,10 @@ struct ForceSettings {
   double damping_ratio = 0.0;  // viscous contact damping ratio β (0: none)
   bool friction = true;        // false: frictionless scene, no shear history
   bool all_spheres = false;    // every body is one ball and ball k is body k
+  // m: a ball–ball candidate that was not touching and whose gap_at_build exceeds
+  // this cannot touch now and is skipped (contact_list.hpp, "Far candidates"); the
+  // caller rounds it up to a float. +∞: every candidate is tested.
+  float far_gap = std::numeric_limits<float>::infinity();
 };
 
 // The force pass: every candidate contact is evaluated once, by the ball that is its

@@ -1,6 +1,7 @@
 #include "engine/simulation.hpp"
 
 #include <cmath>
+#include <limits>
 #include <ostream>
 #include <sstream>
 
@@ -240,7 +241,8 @@ void Simulation::set_size_scale(double scale) {
   // A pair listed at the last build stays valid while shift_a + shift_b plus the
   // growth of r_a + r_b stays below the skin.
   const double growth = std::max(0.0, scale - scale_at_build_) * max_full_radius_;
-  if (prepared_ && std::sqrt(shift2) + growth > 0.5 * skin_) needs_rebuild_ = true;
+  if (prepared_) shift_since_build_ = std::sqrt(shift2);
+  if (prepared_ && shift_since_build_ + growth > 0.5 * skin_) needs_rebuild_ = true;
 }
 
 bool Simulation::scene_has_friction() const {
@@ -356,13 +358,29 @@ void Simulation::rebuild_neighbours() {
   wall_contacts_.rebuild(std::move(wa), std::move(wb), friction_, n, false);
   a_side_.assign(n, Wrench{Vec3::Zero(), Vec3::Zero()});
 
+  ball_contacts_.record_build_gaps(balls_.position, balls_.radius);
   reference_positions_ = balls_.position;
+  shift_since_build_ = 0.0;
   scale_at_build_ = size_scale_;
   needs_rebuild_ = false;
   wall_reference_.resize(walls_.size());
   for (Index w = 0; w < nw; ++w) wall_reference_[w] = walls_[w].displacement;
   ++builds_;
   if (prepared_ && !settings_.fixed_dt) update_timestep();
+}
+
+// Each ball has moved at most D = shift_since_build_ since the build and each radius
+// has grown at most G, so a gap can have closed by at most 2(D + G). The margin of
+// 1e-9 skins covers the rounding of the distances (~1e-16 of a ball diameter), so a
+// candidate beyond the bound is one the full test would also find apart.
+float Simulation::far_gap() const {
+  constexpr float kNever = std::numeric_limits<float>::infinity();
+  if (!settings_.skip_far_candidates) return kNever;
+  const double growth = std::max(0.0, size_scale_ - scale_at_build_) * max_full_radius_;
+  const double bound = 2.0 * (shift_since_build_ + growth) + 1e-9 * skin_;
+  float f = static_cast<float>(bound);
+  if (static_cast<double>(f) < bound) f = std::nextafter(f, kNever);  // round up
+  return f;
 }
 
 void Simulation::sum_wall_forces() {
@@ -406,7 +424,7 @@ void Simulation::step() {
     pairs_stale_ = false;
   }
   const bool has_walls = !walls_.empty();
-  const ForceSettings fs{dt_, settings_.damping_ratio, friction_, all_spheres_};
+  const ForceSettings fs{dt_, settings_.damping_ratio, friction_, all_spheres_, far_gap()};
   const IntegratorSettings is{dt_,
                               settings_.local_damping,
                               settings_.gravity,
@@ -443,6 +461,7 @@ void Simulation::step() {
       wall_shift2 =
           std::max(wall_shift2, (walls_[w].displacement - wall_reference_[w]).squaredNorm());
   }
+  shift_since_build_ = std::sqrt(r.max_ball_shift2);
   time_ += dt_;
   ++steps_;
   // Contacts form between rebuilds too (a bed being squeezed): refresh the

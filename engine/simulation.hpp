@@ -46,6 +46,10 @@ struct SimulationSettings {
   // (same sums in the same order, so the same bits); false forces the general path,
   // for the test and the benchmark that compare the two.
   bool sphere_fast_path = true;
+  // Candidates that cannot touch since the last build are not evaluated (ForceSettings::
+  // far_gap): the same bits, less work in a clump bed; false tests every candidate,
+  // for the test that checks the skip changes nothing.
+  bool skip_far_candidates = true;
   std::ostream* log = nullptr;  // where the start-up report goes (nullptr: silent)
 };
 
@@ -140,6 +144,7 @@ class Simulation {
   void update_timestep();
   // all_spheres_ from the bodies and settings_.sphere_fast_path (prepare() and the setter).
   void refresh_all_spheres();
+  float far_gap() const;
   void sum_wall_forces();
   void drive_walls();
   bool scene_has_friction() const;
@@ -165,6 +170,9 @@ class Simulation {
   double size_scale_ = 1.0, scale_at_build_ = 1.0, max_full_radius_ = 0.0;
   TimestepEstimate estimate_;  // the last critical-timestep estimate
   double time_ = 0.0, dt_ = 0.0, skin_ = 0.0, max_radius_ = 0.0;
+  // m: the largest distance any ball has moved from reference_positions_ (the last
+  // build), as of the last update of the positions; it bounds how far a gap can close.
+  double shift_since_build_ = 0.0;
   long steps_ = 0, builds_ = 0;
   bool prepared_ = false, friction_ = false, needs_rebuild_ = false, pairs_stale_ = true;
   bool all_spheres_ = false;  // ForceSettings::all_spheres, from refresh_all_spheres()

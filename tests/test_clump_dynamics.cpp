@@ -27,7 +27,6 @@ struct Dumbbell {
   }
 };
 
-
 }  // namespace
 
 TEST(ClumpDynamics, FreeSpinAboutAPrincipalAxisTurnsTheBallsAtOmega) {
@@ -64,8 +63,8 @@ TEST(ClumpDynamics, OffCentreImpactSpinsTheClumpAsTheImpulseFormulaSays) {
     Simulation sim(s);
     const Index mat = sim.add_material({1e7, 1e7, 0.0});
     Dumbbell db;
-    const Index c = sim.add_clump(Vec3::Zero(), Quat::Identity(), db.offsets, db.radii,
-                                  db.mass(), db.inertia(), mat);
+    const Index c = sim.add_clump(Vec3::Zero(), Quat::Identity(), db.offsets, db.radii, db.mass(),
+                                  db.inertia(), mat);
     const Index ball = sim.add_sphere(Vec3(db.d, 0.03, 0.0), 0.008, 2600, mat);
     const double u = 1.0;  // m/s
     sim.set_body_velocity(ball, Vec3(0.0, -u, 0.0));
@@ -179,16 +178,17 @@ TEST(ClumpDynamics, SizeScaleShrinksAndGrowsAboutTheCentreOfMass) {
   const Index mat = sim.add_material({1e6, 1e6, 0.0});
   Dumbbell db;
   const Quat q(Eigen::AngleAxisd(0.5, Vec3(0, 0, 1)));
-  const Index a = sim.add_clump(Vec3(0.1, 0, 0), q, db.offsets, db.radii, db.mass(),
-                                db.inertia(), mat);
+  const Index a =
+      sim.add_clump(Vec3(0.1, 0, 0), q, db.offsets, db.radii, db.mass(), db.inertia(), mat);
   // A sphere 1 mm clear of the dumbbell's +x ball at full size.
   const Vec3 tip = Vec3(0.1, 0, 0) + q * db.offsets[1];
   const Index s = sim.add_sphere(tip + Vec3(0, 0.021, 0), 0.01, 2600, mat);
   sim.set_size_scale(0.5);
   const Index first = sim.bodies().first_ball[a];
   EXPECT_NEAR(sim.balls().radius[first + 1], 0.005, 1e-15);
-  EXPECT_NEAR((sim.balls().position[first + 1] - (Vec3(0.1, 0, 0) + 0.5 * (q * db.offsets[1])))
-                  .norm(), 0.0, 1e-15);
+  EXPECT_NEAR(
+      (sim.balls().position[first + 1] - (Vec3(0.1, 0, 0) + 0.5 * (q * db.offsets[1]))).norm(), 0.0,
+      1e-15);
   const double mass = sim.bodies().mass[a];
   sim.prepare();
   sim.run(10);
@@ -204,4 +204,39 @@ TEST(ClumpDynamics, SizeScaleShrinksAndGrowsAboutTheCentreOfMass) {
   sim.set_body_velocity(s, Vec3(0, -0.5, 0));
   while (sim.time() < 0.02 && sim.contacts().ball_contacts == 0) sim.step();
   EXPECT_EQ(sim.contacts().ball_contacts, 1);  // found after the growth rebuilds
+}
+
+// A far candidate is skipped while its gap at the build exceeds twice the balls'
+// shift plus twice their radius growth (contact_list.hpp, "Far candidates"). Here
+// nothing moves and only growth closes the gap: two spheres of full radius 10 mm,
+// centres 19.5 mm apart, listed at scale 0.95 (gap 0.5 mm, inside the 1.9 mm skin),
+// then grown in steps of 0.001 that stay below the half-skin rebuild trigger. They
+// touch once 20 mm × scale exceeds 19.5 mm, at scale 0.976, with no rebuild to list
+// them again: only the growth term of the bound lets the force pass see it.
+TEST(ClumpDynamics, GrowthAloneClosesAFarCandidateWithoutARebuild) {
+  for (const bool skip : {true, false}) {
+    SimulationSettings settings = scenes::bare_settings();
+    settings.skip_far_candidates = skip;
+    Simulation sim(settings);
+    const Index mat = sim.add_material({1e6, 1e6, 0.0});
+    sim.add_sphere(Vec3(0, 0, 0), 0.01, 2600, mat);
+    sim.add_sphere(Vec3(0.0195, 0, 0), 0.01, 2600, mat);
+    sim.set_size_scale(0.95);
+    sim.prepare();
+    sim.step();
+    ASSERT_EQ(sim.ball_contacts().size(), 1);  // listed as a candidate
+    EXPECT_EQ(sim.contacts().ball_contacts, 0);
+    for (int k = 1; k <= 25; ++k) {  // scale 0.975: 19.5 mm apart, not touching yet
+      sim.set_size_scale(0.95 + 0.001 * k);
+      sim.step();
+    }
+    EXPECT_EQ(sim.contacts().ball_contacts, 0) << "skip " << skip;
+    sim.set_size_scale(0.976);
+    sim.step();
+    EXPECT_EQ(sim.neighbour_builds(), 1) << "skip " << skip;  // the growth is 0.26 mm
+    ASSERT_EQ(sim.contacts().ball_contacts, 1) << "skip " << skip;
+    // Overlap 2 × 9.76 − 19.5 = 0.02 mm (the spheres have not moved yet), so the
+    // force is kn/2 × 2e-5 m = 10 N for balls of kn = 1e6 N/m in series.
+    EXPECT_NEAR(sim.ball_contacts().normal_force[0], 10.0, 1e-6) << "skip " << skip;
+  }
 }
