@@ -24,7 +24,7 @@ void ContactList::rebuild(std::vector<Index>&& new_a, std::vector<Index>&& new_b
   b = std::move(new_b);
   shear_force = std::move(new_shear);
   history_ = keep_history;
-  b_wrench.assign(n, Wrench{Vec3::Zero(), Vec3::Zero()});
+  b_wrench.assign(n + 1, Wrench{Vec3::Zero(), Vec3::Zero()});  // + the zero slot
   normal_force.assign(n, 0.0);
   slip_total.assign(n, 0.0);
   viscous_total.assign(n, 0.0);

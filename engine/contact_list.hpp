@@ -15,8 +15,9 @@
 // A body then adds its balls' a-side sums and the b_wrench of the contacts its balls
 // are side b of (b_first/b_contact), always in the same order. Ball–wall lists store
 // −F on the wall in b_wrench (their torque is unused). A contact that is not
-// touching holds a zero b_wrench, so the gather adds every listed contact without
-// testing `active` (a branch it mispredicted often).
+// touching holds a zero b_wrench; the gather reads the list's extra zero slot in its
+// place, selected by a mask rather than a branch (it mispredicted often), so that
+// a clump bed's many open candidates cost no memory traffic.
 //
 // Energy: the work a contact dissipates (Coulomb slip, dashpots) is summed on the
 // contact while the list lives, and handed to the ball ledger of side a by
@@ -50,9 +51,11 @@ struct Wrench {
 };
 
 struct ContactList {
-  std::vector<Index> a, b;            // keys, sorted lexicographically
-  std::vector<Vec3> shear_force;      // N on a, history; empty when the scene is frictionless
-  std::vector<Wrench> b_wrench;       // on side b: −F and its moment about b's centre of mass
+  std::vector<Index> a, b;        // keys, sorted lexicographically
+  std::vector<Vec3> shear_force;  // N on a, history; empty when the scene is frictionless
+  // On side b: −F and its moment about b's centre of mass. One more entry than there
+  // are contacts, always zero, which the gather reads for an open contact.
+  std::vector<Wrench> b_wrench;
   std::vector<double> normal_force;   // N, elastic part kn·overlap (what PFC reports)
   std::vector<double> slip_total;     // J dissipated by Coulomb slip since the last rebuild
   std::vector<double> viscous_total;  // J dissipated by the dashpots since the last rebuild
