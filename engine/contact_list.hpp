@@ -8,16 +8,17 @@
 // Sign conventions: `normal` (implied) points from b to a; the contact's total
 // force F (normal + shear + dashpot, N) acts on a, and b receives −F.
 //
-// How forces reach bodies without atomics: the force pass runs ball by ball, each
-// ball evaluating the contacts it is side a of (the list is sorted by a, so they
-// are the contiguous range a_first[i] .. a_first[i+1]) and summing their wrenches
-// on a in registers; only the wrench on side b is stored per contact (b_wrench).
-// A body then adds its balls' a-side sums and the b_wrench of the contacts its balls
-// are side b of (b_first/b_contact), always in the same order. Ball–wall lists store
-// −F on the wall in b_wrench (their torque is unused). A contact that is not
-// touching holds a zero b_wrench; the gather reads the list's extra zero slot in its
-// place, selected by a mask rather than a branch (it mispredicted often), so that
-// a clump bed's many open candidates cost no memory traffic.
+// How forces reach bodies without atomics: the force pass runs body by body and,
+// within a body, ball by ball, each ball evaluating the contacts it is side a of
+// (the list is sorted by a, so they are the contiguous range a_first[i] ..
+// a_first[i+1]) and summing their wrenches on the body in registers; only the wrench
+// on side b is stored per contact (b_wrench). A body then adds its a-side sum and
+// the b_wrench of the contacts its balls are side b of (b_first/b_contact), always
+// in the same order. Ball–wall lists store −F on the wall in b_wrench (their torque
+// is unused). A contact that is not touching holds a zero b_wrench; the gather reads
+// the list's extra zero slot in its place, selected by a mask rather than a branch
+// (it mispredicted often), so that a clump bed's many open candidates cost no memory
+// traffic.
 //
 // Energy: the work a contact dissipates (Coulomb slip, dashpots) is summed on the
 // contact while the list lives, and handed to the ball ledger of side a by

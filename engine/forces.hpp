@@ -35,10 +35,11 @@ struct ForceSettings {
 };
 
 // The force pass: every candidate contact is evaluated once, by the ball that is its
-// side a (contact_list.hpp explains the layout). a_side[i] receives the sum of the
-// wrenches on ball i from the contacts it is side a of, ball–ball then ball–wall, in
-// contact order; each contact stores the wrench on its side b. Each thread takes a
-// share of the balls (work_split.hpp) and there is no barrier at the end: inside a
+// side a (contact_list.hpp explains the layout). a_side[b] (one per body) receives
+// the sum of the wrenches on body b from the contacts its balls are side a of, ball
+// by ball, each ball's ball–ball then ball–wall contacts in contact order; each
+// contact stores the wrench on its side b. Each thread takes a share of the bodies
+// (work_split.hpp) and there is no barrier at the end: inside a
 // parallel region the caller must put `#pragma omp barrier` before anything reads
 // the results.
 void compute_contacts(const BallStore& balls, const BodyStore& bodies, const PairTable& pairs,
@@ -46,8 +47,8 @@ void compute_contacts(const BallStore& balls, const BodyStore& bodies, const Pai
                       ContactList& ball_contacts, ContactList& wall_contacts,
                       std::vector<Wrench>& a_side);
 
-// Sums one body's contact wrenches and gravity into its force and torque: its balls'
-// a-side sums, then the b-side wrenches of the contacts its balls are side b of (an
+// Sums one body's contact wrenches and gravity into its force and torque: its a-side
+// sum, then the b-side wrenches of the contacts its balls are side b of (an
 // open contact adds the zero slot, without a branch). A body's balls are
 // contiguous and so are their b entries. Fixed order, any thread count. Inline: it
 // runs once per body per step inside the integrator's loop. kSpheres: a sphere-only
@@ -59,10 +60,8 @@ inline void gather_body_force(Index body, const ContactList& bc, const std::vect
   V3 m{0.0, 0.0, 0.0};
   const Index first = kSpheres ? body : bodies.first_ball[body];
   const Index last = kSpheres ? body + 1 : first + bodies.ball_count[body];
-  for (Index k = first; k < last; ++k) {
-    f += load(a_side[k].force);
-    m += load(a_side[k].torque);
-  }
+  f += load(a_side[body].force);
+  m += load(a_side[body].torque);
   // An open contact's wrench is zero, so it may be read from the list's zero slot:
   // the address is selected, not branched on (half of a sphere bed's candidates are
   // open, in no pattern a predictor learns), and a clump bed, whose candidates are

@@ -34,7 +34,7 @@ struct IntegrationReport {
   bool bad_is_nan = false;       // true: non-finite; false: over max_speed
 };
 
-// Gathers each body's contact forces (forces.hpp: its balls' a-side sums `a_side` and
+// Gathers each body's contact forces (forces.hpp: its a-side sum `a_side`, one per body, and
 // the b-side wrenches of `ball_contacts`), advances it by one step and re-places its
 // balls. `reference` holds ball positions at the last neighbour build, for the skin
 // criterion. Each thread takes a share of the bodies (work_split.hpp): call it from

@@ -356,7 +356,7 @@ void Simulation::rebuild_neighbours() {
         }
   }
   wall_contacts_.rebuild(std::move(wa), std::move(wb), friction_, n, false);
-  a_side_.assign(n, Wrench{Vec3::Zero(), Vec3::Zero()});
+  a_side_.assign(bodies_.size(), Wrench{Vec3::Zero(), Vec3::Zero()});
 
   ball_contacts_.record_build_gaps(balls_.position, balls_.radius);
   reference_positions_ = balls_.position;

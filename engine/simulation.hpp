@@ -159,7 +159,7 @@ class Simulation {
   PairTable pairs_;  // combined contact properties; rebuilt when pairs_stale_
   CellList cells_;
   ContactList ball_contacts_, wall_contacts_;
-  std::vector<Wrench> a_side_;             // per ball, this step: wrenches of its side-a contacts
+  std::vector<Wrench> a_side_;  // per body, this step: wrenches of its balls' side-a contacts
   std::vector<Vec3> reference_positions_;  // ball positions at the last neighbour build
   std::vector<Vec3> wall_reference_;       // wall displacements at the last build
   std::vector<Vec3> wall_force_;
