@@ -33,6 +33,7 @@ void ContactList::rebuild(std::vector<Index>&& new_a, std::vector<Index>&& new_b
 
   // Side a: the list is sorted by a, so each ball's contacts are one range.
   a_first.assign(n_balls + 1, 0);
+  touching_first.assign(n_balls + 1, 0);
   for (std::size_t c = 0; c < n; ++c) ++a_first[a[c] + 1];
   for (Index i = 0; i < n_balls; ++i) a_first[i + 1] += a_first[i];
   // Side b, by counting sort: each ball's entries come in contact order.
@@ -55,6 +56,11 @@ void ContactList::record_build_gaps(const std::vector<Vec3>& position,
       g = std::nextafter(g, -std::numeric_limits<float>::infinity());
     gap_at_build[c] = g;
   }
+  // Per-ball counts of the candidates touching at the build, as a prefix.
+  for (std::size_t c = 0; c < a.size(); ++c)
+    if (gap_at_build[c] < 0.0f) ++touching_first[a[c] + 1];
+  for (std::size_t i = 0; i + 1 < touching_first.size(); ++i)
+    touching_first[i + 1] += touching_first[i];
 }
 
 void ContactList::flush_dissipation(std::vector<double>& friction, std::vector<double>& viscous) {

@@ -67,6 +67,10 @@ struct ContactList {
 
   // Per ball i: its contacts as side a are a_first[i] .. a_first[i + 1] (size n_balls + 1).
   std::vector<Index> a_first;
+  // Per ball i: how many of the candidates before a_first[i] touched at the build
+  // (record_build_gaps; zeros until then). What the force pass costs is mostly its
+  // touching contacts, so its work split counts them (forces.cpp).
+  std::vector<Index> touching_first;
   // Per ball i (ball–ball lists only): its contacts as side b are
   // b_contact[b_first[i] .. b_first[i + 1]], in contact order.
   std::vector<Index> b_first, b_contact;

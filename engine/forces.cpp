@@ -220,11 +220,15 @@ void contact_pass(const BallStore& ball_store, const BodyStore& body_store, cons
     if constexpr (kSpheres) return b;
     return b < n_bodies ? first_ball[b] : n_balls;
   };
-  // Each thread takes a share of bodies holding about the same number of contacts
-  // (a contact costs about as much as two balls' bookkeeping): work_split.hpp.
+  // Each thread takes a share of bodies of about the same cost (work_split.hpp), in
+  // units of a ball's bookkeeping: a candidate skipped 1, a wall candidate 4, a
+  // contact touching at the build 16 (about their instruction counts). A clump bed
+  // has 19 candidates per touching contact, spread evenly, while its touching
+  // contacts crowd the base: counted by candidates, one thread waited at the barrier.
+  const Index* const touching_first = bc_list.touching_first.data();
   const auto [lo, hi] = balanced_range(n_bodies, [&](Index b) {
     const Index k = ball_start(b);
-    return 2L * (bc.a_first[k] + (has_walls ? wc.a_first[k] : 0)) + k;
+    return 16L * touching_first[k] + bc.a_first[k] + 4L * (has_walls ? wc.a_first[k] : 0) + 2L * k;
   });
   for (Index body = lo; body < hi; ++body) {
     // One wrench per body, summed in registers over all its balls' side-a contacts:
