@@ -33,6 +33,9 @@ struct BenchBedOptions {
   // Richardson iteration on the quaternion; YADE: exact aspherical rotation), so
   // the benchmark does too by default.
   RotationIntegrator rotation = RotationIntegrator::kFull;
+  // SimulationSettings::skip_far_candidates; false measures what the skip saves, in
+  // one binary, with the same bits.
+  bool skip_far_candidates = true;
   std::ostream* log = nullptr;  // dt report and warnings
 };
 

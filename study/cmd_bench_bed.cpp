@@ -66,6 +66,9 @@ void run(BenchBedArgs& a) {
                               {"dt_critical_estimate_s", sim.critical_dt()},
                               {"skin_m", sim.skin()},
                               {"neighbour_builds", sim.neighbour_builds()},
+                              {"ball_ball_candidates", sim.ball_contacts().size()},
+                              {"ball_wall_candidates", sim.wall_contacts().size()},
+                              {"skip_far_candidates", a.bed.skip_far_candidates},
                               {"rotation", a.rotation},
                               {"seconds", seconds},
                               {"ball_steps_per_s", rate},
@@ -115,6 +118,9 @@ void register_bench_bed_command(CLI::App& app) {
                   "PFC local damping alpha (0 in the benchmark; the convention checks settle "
                   "with it)")
       ->check(CLI::Range(0.0, 0.99));
+  cmd->add_flag("!--test-all-candidates", a->bed.skip_far_candidates,
+                "evaluate every neighbour candidate each step, also those that cannot touch "
+                "(the same bits; measures what skipping them saves)");
   cmd->add_option("--export-packing", a->export_packing,
                   "write the bed after the last step as a packing file");
   cmd->callback([a] { run(*a); });
