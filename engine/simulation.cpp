@@ -222,20 +222,33 @@ void Simulation::set_size_scale(double scale) {
     max_full_radius_ = max_radius_;
   }
   size_scale_ = scale;
-  const Index n = balls_.size();
+  const Index n_bodies = bodies_.size();
+  const bool measure = prepared_;
+  // Raw pointers, taken once: through the containers, each store into a ball's
+  // radius made GCC reload the data pointers of every vector the next ball reads.
+  double* const radius = balls_.radius.data();
+  Vec3* const offset = balls_.offset.data();
+  Vec3* const position = balls_.position.data();
+  const double* const full_radius = full_radius_.data();
+  const Vec3* const full_offset = full_offset_.data();
+  const Vec3* const reference = reference_positions_.data();
   double shift2 = 0.0;
   // Every step of a radius expansion comes here, for every ball (63,810 in a Sample 2
-  // bed), so the loop runs on the step's threads. Each ball is its own work and
+  // bed), so the loop runs on the step's threads, body by body: a body's position
+  // and orientation are loaded once for all its balls. Each ball is its own work and
   // max is exact in any order: the result does not depend on the thread count.
 #pragma omp parallel for schedule(static) reduction(max : shift2)
-  for (Index k = 0; k < n; ++k) {
-    const Index b = balls_.body[k];
-    balls_.radius[k] = scale * full_radius_[k];
-    balls_.offset[k] = scale * full_offset_[k];
-    if (!bodies_.is_sphere[b])
-      balls_.position[k] = bodies_.position[b] + bodies_.orientation[b] * balls_.offset[k];
-    if (prepared_)
-      shift2 = std::max(shift2, (balls_.position[k] - reference_positions_[k]).squaredNorm());
+  for (Index b = 0; b < n_bodies; ++b) {
+    const Index first = bodies_.first_ball[b], last = first + bodies_.ball_count[b];
+    const bool clump = !bodies_.is_sphere[b];
+    const Vec3 centre = bodies_.position[b];
+    const Quat q = bodies_.orientation[b];
+    for (Index k = first; k < last; ++k) {
+      radius[k] = scale * full_radius[k];
+      offset[k] = scale * full_offset[k];
+      if (clump) position[k] = centre + q * offset[k];
+      if (measure) shift2 = std::max(shift2, (position[k] - reference[k]).squaredNorm());
+    }
   }
   max_radius_ = scale * max_full_radius_;
   // A pair listed at the last build stays valid while shift_a + shift_b plus the
