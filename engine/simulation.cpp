@@ -253,9 +253,8 @@ void Simulation::set_size_scale(double scale) {
   max_radius_ = scale * max_full_radius_;
   // A pair listed at the last build stays valid while shift_a + shift_b plus the
   // growth of r_a + r_b stays below the skin.
-  const double growth = std::max(0.0, scale - scale_at_build_) * max_full_radius_;
   if (prepared_) shift_since_build_ = std::sqrt(shift2);
-  if (prepared_ && shift_since_build_ + growth > 0.5 * skin_) needs_rebuild_ = true;
+  if (prepared_ && shift_since_build_ + growth_since_build() > 0.5 * skin_) needs_rebuild_ = true;
 }
 
 bool Simulation::scene_has_friction() const {
@@ -386,11 +385,14 @@ void Simulation::rebuild_neighbours() {
 // has grown at most G, so a gap can have closed by at most 2(D + G). The margin of
 // 1e-9 skins covers the rounding of the distances (~1e-16 of a ball diameter), so a
 // candidate beyond the bound is one the full test would also find apart.
+double Simulation::growth_since_build() const {
+  return std::max(0.0, size_scale_ - scale_at_build_) * max_full_radius_;
+}
+
 float Simulation::far_gap() const {
   constexpr float kNever = std::numeric_limits<float>::infinity();
   if (!settings_.skip_far_candidates) return kNever;
-  const double growth = std::max(0.0, size_scale_ - scale_at_build_) * max_full_radius_;
-  const double bound = 2.0 * (shift_since_build_ + growth) + 1e-9 * skin_;
+  const double bound = 2.0 * (shift_since_build_ + growth_since_build()) + 1e-9 * skin_;
   float f = static_cast<float>(bound);
   if (static_cast<double>(f) < bound) f = std::nextafter(f, kNever);  // round up
   return f;
@@ -481,9 +483,8 @@ void Simulation::step() {
   // automatic timestep often enough that it never trails them by much.
   if (!settings_.fixed_dt && steps_ % kTimestepRefreshSteps == 0) update_timestep();
   const double half = 0.5 * skin_;
-  const double growth = std::max(0.0, size_scale_ - scale_at_build_) * max_full_radius_;
-  needs_rebuild_ =
-      needs_rebuild_ || std::sqrt(r.max_ball_shift2) + growth > half || wall_shift2 > half * half;
+  needs_rebuild_ = needs_rebuild_ || shift_since_build_ + growth_since_build() > half ||
+                   wall_shift2 > half * half;
 }
 
 void Simulation::run(long steps) {

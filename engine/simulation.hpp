@@ -144,6 +144,8 @@ class Simulation {
   void update_timestep();
   // all_spheres_ from the bodies and settings_.sphere_fast_path (prepare() and the setter).
   void refresh_all_spheres();
+  // m: the most any radius has grown since the last build (radius expansion).
+  double growth_since_build() const;
   float far_gap() const;
   void sum_wall_forces();
   void drive_walls();
