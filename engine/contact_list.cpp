@@ -45,6 +45,46 @@ void ContactList::rebuild(std::vector<Index>&& new_a, std::vector<Index>&& new_b
   b_contact.resize(n);
   std::vector<Index> fill(b_first.begin(), b_first.end() - 1);
   for (std::size_t c = 0; c < n; ++c) b_contact[fill[b[c]]++] = static_cast<Index>(c);
+  live_cover = -std::numeric_limits<float>::infinity();
+  live.assign(n, 0);
+  live_a.assign(n, 0);
+  live_b.assign(n, 0);
+  live_a_end.assign(a_first.begin(), a_first.end() - 1);  // empty lists until the refresh
+  live_b_end.assign(b_first.begin(), b_first.end() - 1);
+}
+
+// Both loops are branch-free: every candidate is written to the next slot and the
+// slot advances by its 0/1 mark, since whether a candidate is live follows no
+// pattern a predictor could learn.
+void ContactList::refresh_live_a(Index ball_lo, Index ball_hi) {
+  const float cover = live_cover;
+  const std::uint8_t* const on = active.data();
+  const float* const gap = gap_at_build.data();
+  std::uint8_t* const mark = live.data();
+  Index* const out = live_a.data();
+  for (Index i = ball_lo; i < ball_hi; ++i) {
+    Index w = a_first[i];
+    for (Index c = a_first[i]; c < a_first[i + 1]; ++c) {
+      const std::uint8_t keep = on[c] | std::uint8_t(gap[c] <= cover);
+      mark[c] = keep;
+      out[w] = c;
+      w += keep;
+    }
+    live_a_end[i] = w;
+  }
+}
+
+void ContactList::refresh_live_b(Index first, Index last) {
+  const std::uint8_t* const mark = live.data();
+  const Index* const entry = b_contact.data();
+  Index* const out = live_b.data();
+  Index w = b_first[first];
+  for (Index e = b_first[first]; e < b_first[last]; ++e) {
+    const Index c = entry[e];
+    out[w] = c;
+    w += mark[c];
+  }
+  live_b_end[first] = w;
 }
 
 void ContactList::record_build_gaps(const std::vector<Vec3>& position,

@@ -36,9 +36,21 @@
 // so a candidate with g0 above that bound cannot touch and, if it was not touching
 // before, the force pass has nothing to do for it (ForceSettings::far_gap). Skipping
 // it computes nothing the full test would not have found, so the bits are the same.
+//
+// Live candidates: testing every candidate for the skip each step was itself the
+// cost, and in a sphere bed, where half the candidates touch in no pattern, its
+// branch mispredicted about once a candidate. So the candidates that may touch are
+// listed instead, in contact order: those touching, or whose g0 is at most a cover
+// chosen above the bound. While the bound stays at or below the cover, a candidate
+// left off the list is one the skip test would have skipped (it was open when the
+// list was made and, never evaluated since, is open still). Simulation::step()
+// raises the cover, and the force pass and the gather refresh the lists, when the
+// bound passes it; the lists hold a subsequence of the same order, so the bits are
+// the same again.
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "engine/types.hpp"
@@ -75,6 +87,16 @@ struct ContactList {
   // b_contact[b_first[i] .. b_first[i + 1]], in contact order.
   std::vector<Index> b_first, b_contact;
 
+  // Live candidates (ball–ball lists only; see above). The list holds every
+  // candidate c with active[c] or gap_at_build[c] <= live_cover (m), marked live[c].
+  // Per ball i, its live side-a candidates are live_a[a_first[i] .. live_a_end[i]).
+  // Per body, whose first ball is k and whose balls end before ball l, the live
+  // side-b contacts of its balls are live_b[b_first[k] .. live_b_end[k]). −∞ after a
+  // rebuild: the first step makes the lists.
+  float live_cover = -std::numeric_limits<float>::infinity();
+  std::vector<std::uint8_t> live;
+  std::vector<Index> live_a, live_a_end, live_b, live_b_end;
+
   Index size() const { return static_cast<Index>(a.size()); }
   // Total force on a, N (b receives its opposite).
   Vec3 force(Index c) const { return -b_wrench[c].force; }
@@ -88,6 +110,13 @@ struct ContactList {
   // Ball–ball lists: fills gap_at_build from the balls' positions (m) and radii (m)
   // at the build, each value rounded down so that it never exceeds the true gap.
   void record_build_gaps(const std::vector<Vec3>& position, const std::vector<double>& radius);
+
+  // Makes the live side-a lists of balls [ball_lo, ball_hi) and marks live[c] of
+  // their candidates, for the current live_cover. Threads take disjoint ranges.
+  void refresh_live_a(Index ball_lo, Index ball_hi);
+  // Makes the live side-b list of the body whose balls are [first, last), from the
+  // live marks of refresh_live_a (which must have run for every ball).
+  void refresh_live_b(Index first, Index last);
 
   // Adds each contact's dissipated work to the ledgers of its side-a ball (in
   // contact order, so the sums do not depend on threads) and zeroes it.

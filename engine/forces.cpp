@@ -32,13 +32,14 @@ struct BodyView {
 struct ContactView {
   const Index* b;
   const Index* a_first;
-  Vec3* shear_force;  // null in a frictionless scene
+  const Index* live_a;      // ball–ball lists only
+  const Index* live_a_end;  // ball–ball lists only
+  Vec3* shear_force;        // null in a frictionless scene
   Wrench* b_wrench;
   double* normal_force;
   double* slip_total;
   double* viscous_total;
   std::uint8_t* active;
-  const float* gap_at_build;
 };
 
 BallView view(const BallStore& s) {
@@ -51,13 +52,14 @@ BodyView view(const BodyStore& s) {
 ContactView view(ContactList& c) {
   return {c.b.data(),
           c.a_first.data(),
+          c.live_a.data(),
+          c.live_a_end.data(),
           c.shear_force.data(),
           c.b_wrench.data(),
           c.normal_force.data(),
           c.slip_total.data(),
           c.viscous_total.data(),
-          c.active.data(),
-          c.gap_at_build.data()};
+          c.active.data()};
 }
 
 // A contact whose entities no longer overlap: PFC drops its shear force. Its b-side
@@ -230,6 +232,7 @@ void contact_pass(const BallStore& ball_store, const BodyStore& body_store, cons
     const Index k = ball_start(b);
     return 16L * touching_first[k] + bc.a_first[k] + 4L * (has_walls ? wc.a_first[k] : 0) + 2L * k;
   });
+  if (s.refresh_live) bc_list.refresh_live_a(ball_start(lo), ball_start(hi));
   for (Index body = lo; body < hi; ++body) {
     // One wrench per body, summed in registers over all its balls' side-a contacts:
     // a clump's balls mostly touch nothing, and a store and a reload of 48 bytes per
@@ -239,12 +242,11 @@ void contact_pass(const BallStore& ball_store, const BodyStore& body_store, cons
     for (Index i = ball_start(body); i < end; ++i) {
       const V3 x = load(balls.position[i]);
       const double r = balls.radius[i];
-      for (Index c = bc.a_first[i]; c < bc.a_first[i + 1]; ++c) {
-        // A far candidate that was not touching still is not: nothing to evaluate or
-        // clear. Two streamed loads instead of the other ball's position and radius.
-        if (!bc.active[c] && bc.gap_at_build[c] > s.far_gap) continue;
-        ball_ball<kFriction, kDamped, kSpheres>(balls, bodies, pairs, s, bc, c, i, x, r, f, t);
-      }
+      // The live candidates only: one left off is a far candidate that was not
+      // touching and still is not, with nothing to evaluate or clear.
+      for (Index e = bc.a_first[i]; e < bc.live_a_end[i]; ++e)
+        ball_ball<kFriction, kDamped, kSpheres>(balls, bodies, pairs, s, bc, bc.live_a[e], i, x, r,
+                                                f, t);
       if (has_walls)
         for (Index c = wc.a_first[i]; c < wc.a_first[i + 1]; ++c)
           ball_wall<kFriction, kDamped, kSpheres>(balls, bodies, pairs, walls, s, wc, c, i, x, r, f,

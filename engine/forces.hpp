@@ -11,7 +11,6 @@
 #pragma once
 
 #include <cstdint>
-#include <limits>
 #include <vector>
 
 #include "engine/ball_store.hpp"
@@ -28,10 +27,12 @@ struct ForceSettings {
   double damping_ratio = 0.0;  // viscous contact damping ratio β (0: none)
   bool friction = true;        // false: frictionless scene, no shear history
   bool all_spheres = false;    // every body is one ball and ball k is body k
-  // m: a ball–ball candidate that was not touching and whose gap_at_build exceeds
-  // this cannot touch now and is skipped (contact_list.hpp, "Far candidates"); the
-  // caller rounds it up to a float. +∞: every candidate is tested.
-  float far_gap = std::numeric_limits<float>::infinity();
+  // The pass evaluates the ball–ball list's live candidates only, so the caller
+  // keeps its live_cover at or above the bound on how far a gap can have closed
+  // (contact_list.hpp, "Far candidates", "Live candidates"; Simulation::far_gap()).
+  // true: the caller has just raised live_cover, and the pass remakes the live
+  // side-a lists before using them.
+  bool refresh_live = false;
 };
 
 // The force pass: every candidate contact is evaluated once, by the ball that is its
@@ -48,14 +49,16 @@ void compute_contacts(const BallStore& balls, const BodyStore& bodies, const Pai
                       std::vector<Wrench>& a_side);
 
 // Sums one body's contact wrenches and gravity into its force and torque: its a-side
-// sum, then the b-side wrenches of the contacts its balls are side b of (an
-// open contact adds the zero slot, without a branch). A body's balls are
-// contiguous and so are their b entries. Fixed order, any thread count. Inline: it
-// runs once per body per step inside the integrator's loop. kSpheres: a sphere-only
-// scene, where body b is ball b, so the body's ball range is not read.
+// sum, then the b-side wrenches of the live contacts its balls are side b of (an
+// open one adds the zero slot, without a branch; a contact off the live list is
+// open). A body's balls are contiguous and so are their b entries. Fixed order, any
+// thread count. Inline: it runs once per body per step inside the integrator's loop.
+// refresh_live: first remake the body's live side-b list (the force pass of this
+// step has remade the live marks). kSpheres: a sphere-only scene, where body b is
+// ball b, so the body's ball range is not read.
 template <bool kSpheres = false>
-inline void gather_body_force(Index body, const ContactList& bc, const std::vector<Wrench>& a_side,
-                              const Vec3& gravity, BodyStore& bodies) {
+inline void gather_body_force(Index body, ContactList& bc, const std::vector<Wrench>& a_side,
+                              const Vec3& gravity, BodyStore& bodies, bool refresh_live) {
   V3 f = bodies.mass[body] * load(gravity);
   V3 m{0.0, 0.0, 0.0};
   const Index first = kSpheres ? body : bodies.first_ball[body];
@@ -67,11 +70,13 @@ inline void gather_body_force(Index body, const ContactList& bc, const std::vect
   // open, in no pattern a predictor learns), and a clump bed, whose candidates are
   // 95 % open, no longer streams every candidate's 48 bytes (4 MB a step in Sample 1)
   // through the cache. Adding that zero gives the same bits as adding the stored one.
+  if (refresh_live) bc.refresh_live_b(first, last);
   const Wrench* const wrench = bc.b_wrench.data();
   const std::uint8_t* const active = bc.active.data();
+  const Index* const live_b = bc.live_b.data();
   const Index none = bc.size();  // ContactList::b_wrench's zero slot
-  for (Index e = bc.b_first[first]; e < bc.b_first[last]; ++e) {
-    const Index c = bc.b_contact[e];
+  for (Index e = bc.b_first[first]; e < bc.live_b_end[first]; ++e) {
+    const Index c = live_b[e];
     const Index open = Index(active[c]) - 1;                // 0 if touching, all bits set if open
     const Wrench& w = wrench[(c & ~open) | (none & open)];  // a mask: GCC branched on ?:
     f += load(w.force);

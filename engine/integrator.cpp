@@ -32,12 +32,12 @@ struct ThreadReport {
 // only (IntegratorSettings::all_spheres), where body b is ball b and the clump path
 // is not compiled in.
 template <bool kDamped, bool kSpheres>
-[[gnu::always_inline]] inline void step_body(const IntegratorSettings& s, const ContactList& bc,
+[[gnu::always_inline]] inline void step_body(const IntegratorSettings& s, ContactList& bc,
                                              const std::vector<Wrench>& a_side,
                                              const std::vector<Vec3>& reference, BodyStore& bodies,
                                              BallStore& balls, Index b, ThreadReport& out) {
   const double dt = s.dt, alpha = s.local_damping;
-  gather_body_force<kSpheres>(b, bc, a_side, s.gravity, bodies);
+  gather_body_force<kSpheres>(b, bc, a_side, s.gravity, bodies, s.refresh_live);
   const double m = bodies.mass[b];
   const V3 f_raw = load(bodies.force[b]), m_raw = load(bodies.torque[b]);
   const V3 v_old = load(bodies.velocity[b]), w_old = load(bodies.angular_velocity[b]);
@@ -97,9 +97,9 @@ template <bool kDamped, bool kSpheres>
 }
 
 template <bool kDamped, bool kSpheres>
-void step_bodies(const IntegratorSettings& s, const ContactList& bc,
-                 const std::vector<Wrench>& a_side, const std::vector<Vec3>& reference,
-                 BodyStore& bodies, BallStore& balls, Index lo, Index hi, ThreadReport& out) {
+void step_bodies(const IntegratorSettings& s, ContactList& bc, const std::vector<Wrench>& a_side,
+                 const std::vector<Vec3>& reference, BodyStore& bodies, BallStore& balls, Index lo,
+                 Index hi, ThreadReport& out) {
   // A local report, so that its running max can stay in a register: through `out`
   // it lived in memory, since the stores into ball positions may alias it, and
   // every ball paid a load, a max and a store in one chain (`perf annotate` of a
@@ -113,7 +113,7 @@ void step_bodies(const IntegratorSettings& s, const ContactList& bc,
 
 }  // namespace
 
-void integrate(const IntegratorSettings& s, const ContactList& ball_contacts,
+void integrate(const IntegratorSettings& s, ContactList& ball_contacts,
                const std::vector<Wrench>& a_side, const std::vector<Vec3>& reference,
                BodyStore& bodies, BallStore& balls, IntegrationReport& report) {
   ThreadReport mine;

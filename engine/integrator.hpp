@@ -26,6 +26,9 @@ struct IntegratorSettings {
   double max_speed = 100.0;     // m/s; faster is treated as a blow-up
   RotationIntegrator rotation = RotationIntegrator::kPfc;  // for clumps
   bool all_spheres = false;  // every body is one ball and ball k is body k
+  // The force pass of this step remade the live marks: remake each body's live
+  // side-b list before gathering it (ForceSettings::refresh_live).
+  bool refresh_live = false;
 };
 
 struct IntegrationReport {
@@ -41,7 +44,7 @@ struct IntegrationReport {
 // inside a parallel region (all threads) or outside one (serial). `report` must be
 // shared by the threads and start as IntegrationReport{}; it is complete when the
 // call returns.
-void integrate(const IntegratorSettings& s, const ContactList& ball_contacts,
+void integrate(const IntegratorSettings& s, ContactList& ball_contacts,
                const std::vector<Wrench>& a_side, const std::vector<Vec3>& reference,
                BodyStore& bodies, BallStore& balls, IntegrationReport& report);
 

@@ -46,8 +46,8 @@ struct SimulationSettings {
   // (same sums in the same order, so the same bits); false forces the general path,
   // for the test and the benchmark that compare the two.
   bool sphere_fast_path = true;
-  // Candidates that cannot touch since the last build are not evaluated (ForceSettings::
-  // far_gap): the same bits, less work in a clump bed; false tests every candidate,
+  // Candidates that cannot touch since the last build are not evaluated (contact_list.hpp,
+  // "Far candidates"): the same bits, less work; false evaluates every candidate,
   // for the test that checks the skip changes nothing.
   bool skip_far_candidates = true;
   std::ostream* log = nullptr;  // where the start-up report goes (nullptr: silent)
@@ -147,6 +147,9 @@ class Simulation {
   // m: the most any radius has grown since the last build (radius expansion).
   double growth_since_build() const;
   float far_gap() const;
+  // A live_cover for the ball–ball list above `bound` (m), with headroom so that a
+  // moving bed remakes its live lists a few times per build rather than every step.
+  float live_cover_above(float bound) const;
   void sum_wall_forces();
   void drive_walls();
   bool scene_has_friction() const;
