@@ -34,7 +34,7 @@
 // gap at the build, g0 = |x_a − x_b| − (r_a + r_b). If no ball has moved more than D
 // since then and no radius has grown more than G, the gap now is at least g0 − 2(D + G),
 // so a candidate with g0 above that bound cannot touch and, if it was not touching
-// before, the force pass has nothing to do for it (ForceSettings::far_gap). Skipping
+// before, the force pass has nothing to do for it (Simulation::far_gap()). Skipping
 // it computes nothing the full test would not have found, so the bits are the same.
 //
 // Live candidates: testing every candidate for the skip each step was itself the
@@ -90,9 +90,9 @@ struct ContactList {
   // Live candidates (ball–ball lists only; see above). The list holds every
   // candidate c with active[c] or gap_at_build[c] <= live_cover (m), marked live[c].
   // Per ball i, its live side-a candidates are live_a[a_first[i] .. live_a_end[i]).
-  // Per body, whose first ball is k and whose balls end before ball l, the live
-  // side-b contacts of its balls are live_b[b_first[k] .. live_b_end[k]). −∞ after a
-  // rebuild: the first step makes the lists.
+  // Per body whose first ball is k, the live side-b contacts of all its balls are
+  // live_b[b_first[k] .. live_b_end[k]). live_cover is −∞ after a rebuild, so the
+  // first step makes the lists.
   float live_cover = -std::numeric_limits<float>::infinity();
   std::vector<std::uint8_t> live;
   std::vector<Index> live_a, live_a_end, live_b, live_b_end;

@@ -8,22 +8,6 @@ namespace ballast {
 
 namespace {
 
-// sin x and cos x. A clump turns by micro-radians per step, where the Taylor series
-// to x⁷ and x⁶ is as exact as libm: for |x| < 2⁻⁵ the first terms left out, x⁹/9!
-// and x⁸/8!, are below 2⁻⁵⁸ of the result, under half an ulp. It costs a dozen
-// operations instead of a library call (libm's sincos was 40 % of the `full`
-// integrator's instructions in the Sample 1 bench bed); larger angles go to libm.
-inline void sin_cos(double x, double& s, double& c) {
-  if (std::abs(x) < 0x1p-5) {
-    const double x2 = x * x;
-    s = x + (x * x2) * (-1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 * (-1.0 / 5040.0)));
-    c = 1.0 + x2 * (-0.5 + x2 * (1.0 / 24.0 + x2 * (-1.0 / 720.0)));
-  } else {
-    s = std::sin(x);
-    c = std::cos(x);
-  }
-}
-
 // The body turns by angle θ about its own principal axis `axis`, with the world
 // angular momentum held fixed: the body-frame components lb then turn by −θ about
 // that axis. θ = h·lb[axis]/I[axis] is exact because lb[axis] does not change.
@@ -34,7 +18,7 @@ inline void principal_sub_rotation(int axis, double h, const Vec3& inv_inertia, 
   if (theta == 0.0) return;
   const int i = (axis + 1) % 3, j = (axis + 2) % 3;
   double s2, c2;
-  sin_cos(0.5 * theta, s2, c2);
+  small_angle_sin_cos(0.5 * theta, s2, c2);
   const double s = 2.0 * s2 * c2, c = 1.0 - 2.0 * s2 * s2;
   const double li = lb[i], lj = lb[j];
   lb[i] = c * li + s * lj;
@@ -50,6 +34,20 @@ inline void principal_sub_rotation(int axis, double h, const Vec3& inv_inertia, 
 }
 
 }  // namespace
+
+// For |x| < 2⁻⁵ the first terms left out, x⁹/9! and x⁸/8!, are below 2⁻⁵⁸ of the
+// result. libm's sincos was 40 % of the `full` integrator's instructions in the
+// Sample 1 bench bed (docs/PERFORMANCE.md, "What bought what").
+void small_angle_sin_cos(double x, double& s, double& c) {
+  if (std::abs(x) < 0x1p-5) {
+    const double x2 = x * x;
+    s = x + (x * x2) * (-1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 * (-1.0 / 5040.0)));
+    c = 1.0 + x2 * (-0.5 + x2 * (1.0 / 24.0 + x2 * (-1.0 / 720.0)));
+  } else {
+    s = std::sin(x);
+    c = std::cos(x);
+  }
+}
 
 const char* rotation_integrator_name(RotationIntegrator r) {
   return r == RotationIntegrator::kFull ? "full" : "pfc";

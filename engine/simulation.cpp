@@ -403,7 +403,7 @@ float Simulation::far_gap() const {
 // build, and a settled one seldom. The headroom is small because a settled bed has
 // many nearly touching pairs, each of which within it costs a distance test every
 // step (the sphere bench bed: 1,232 of its 3,588 open candidates lie within 1/64
-// skin, 516 within 1 µm). Float arithmetic rounds to nearest, which cannot fall
+// skin, 516 within 1 µm; tests/bench/peers/near_gaps.py). Float arithmetic rounds to nearest, which cannot fall
 // below `bound`, since 2·bound + m exceeds it.
 float Simulation::live_cover_above(float bound) const {
   if (std::isinf(bound)) return bound;
