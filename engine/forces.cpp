@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include <omp.h>
+
 #include "engine/contact_law.hpp"
 #include "engine/work_split.hpp"
 
@@ -228,10 +230,15 @@ void contact_pass(const BallStore& ball_store, const BodyStore& body_store, cons
   // has 19 candidates per touching contact, spread evenly, while its touching
   // contacts crowd the base: counted by candidates, one thread waited at the barrier.
   const Index* const touching_first = bc_list.touching_first.data();
-  const auto [lo, hi] = balanced_range(n_bodies, [&](Index b) {
-    const Index k = ball_start(b);
-    return 16L * touching_first[k] + bc.a_first[k] + 4L * (has_walls ? wc.a_first[k] : 0) + 2L * k;
-  });
+  const double start = s.split != nullptr ? omp_get_wtime() : 0.0;
+  const auto [lo, hi] = balanced_range(
+      n_bodies,
+      [&](Index b) {
+        const Index k = ball_start(b);
+        return 16L * touching_first[k] + bc.a_first[k] + 4L * (has_walls ? wc.a_first[k] : 0) +
+               2L * k;
+      },
+      s.split);
   if (s.refresh_live) bc_list.refresh_live_a(ball_start(lo), ball_start(hi));
   for (Index body = lo; body < hi; ++body) {
     // One wrench per body, summed in registers over all its balls' side-a contacts:
@@ -255,6 +262,7 @@ void contact_pass(const BallStore& ball_store, const BodyStore& body_store, cons
     store(a_side[body].force, f);
     store(a_side[body].torque, t);
   }
+  if (s.split != nullptr) s.split->record(omp_get_thread_num(), omp_get_wtime() - start);
 }
 
 template <bool kFriction, bool kDamped>

@@ -17,6 +17,7 @@
 #include "engine/body_store.hpp"
 #include "engine/contact_list.hpp"
 #include "engine/pair_table.hpp"
+#include "engine/timed_split.hpp"
 #include "engine/v3.hpp"
 #include "engine/walls.hpp"
 
@@ -33,6 +34,9 @@ struct ForceSettings {
   // true: the caller has just raised live_cover, and the pass remakes the live
   // side-a lists before using them.
   bool refresh_live = false;
+  // Thread shares that follow measured time (timed_split.hpp); null: the cost model's
+  // equal shares. Each thread records its time in it; the caller updates it after.
+  TimedSplit* split = nullptr;
 };
 
 // The force pass: every candidate contact is evaluated once, by the ball that is its

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <omp.h>
+
 #include "engine/forces.hpp"
 #include "engine/v3.hpp"
 #include "engine/work_split.hpp"
@@ -117,12 +119,16 @@ void integrate(const IntegratorSettings& s, ContactList& ball_contacts,
                const std::vector<Wrench>& a_side, const std::vector<Vec3>& reference,
                BodyStore& bodies, BallStore& balls, IntegrationReport& report) {
   ThreadReport mine;
+  const double start = s.split != nullptr ? omp_get_wtime() : 0.0;
   // Shares of bodies by work (work_split.hpp): a body costs its integration, its
   // balls and the side-b contacts it gathers.
-  const auto [lo, hi] = balanced_range(bodies.size(), [&](Index b) {
-    const Index first = b < bodies.size() ? bodies.first_ball[b] : balls.size();
-    return long(first) + ball_contacts.b_first[first] + 4L * b;
-  });
+  const auto [lo, hi] = balanced_range(
+      bodies.size(),
+      [&](Index b) {
+        const Index first = b < bodies.size() ? bodies.first_ball[b] : balls.size();
+        return long(first) + ball_contacts.b_first[first] + 4L * b;
+      },
+      s.split);
   if (s.local_damping > 0.0 && s.all_spheres)
     step_bodies<true, true>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
   else if (s.local_damping > 0.0)
@@ -132,8 +138,12 @@ void integrate(const IntegratorSettings& s, ContactList& ball_contacts,
   else
     step_bodies<false, false>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
 
-    // Per-thread results combined with max/min: exact in any order, so the report
-    // does not depend on the thread count.
+  if (s.split != nullptr) s.split->record(omp_get_thread_num(), omp_get_wtime() - start);
+
+  // Per-thread results combined with max/min: exact in any order, so the report
+  // does not depend on the thread count. No barrier after it: the end of the
+  // caller's parallel region is one (a barrier and an `omp single` here cost two
+  // more waits per step).
 #pragma omp critical(ballast_integrate_report)
   {
     report.max_ball_shift2 = std::max(report.max_ball_shift2, mine.shift2);
@@ -141,13 +151,13 @@ void integrate(const IntegratorSettings& s, ContactList& ball_contacts,
         (report.bad_body == kNoIndex || mine.bad < report.bad_body))
       report.bad_body = mine.bad;
   }
-#pragma omp barrier
-#pragma omp single
-  if (report.bad_body != kNoIndex) {
-    const Index b = report.bad_body;
-    report.bad_is_nan = !std::isfinite(bodies.velocity[b].squaredNorm()) ||
-                        !std::isfinite(bodies.angular_velocity[b].squaredNorm());
-  }
+}
+
+void finish_report(const BodyStore& bodies, IntegrationReport& report) {
+  if (report.bad_body == kNoIndex) return;
+  const Index b = report.bad_body;
+  report.bad_is_nan = !std::isfinite(bodies.velocity[b].squaredNorm()) ||
+                      !std::isfinite(bodies.angular_velocity[b].squaredNorm());
 }
 
 }  // namespace ballast

@@ -16,6 +16,7 @@
 #include "engine/body_store.hpp"
 #include "engine/contact_list.hpp"
 #include "engine/rigid_rotation.hpp"
+#include "engine/timed_split.hpp"
 
 namespace ballast {
 
@@ -29,6 +30,8 @@ struct IntegratorSettings {
   // The force pass of this step remade the live marks: remake each body's live
   // side-b list before gathering it (ForceSettings::refresh_live).
   bool refresh_live = false;
+  // Thread shares that follow measured time (timed_split.hpp); null: equal shares.
+  TimedSplit* split = nullptr;
 };
 
 struct IntegrationReport {
@@ -42,10 +45,14 @@ struct IntegrationReport {
 // balls. `reference` holds ball positions at the last neighbour build, for the skin
 // criterion. Each thread takes a share of the bodies (work_split.hpp): call it from
 // inside a parallel region (all threads) or outside one (serial). `report` must be
-// shared by the threads and start as IntegrationReport{}; it is complete when the
-// call returns.
+// shared by the threads and start as IntegrationReport{}; it is complete once every
+// thread has returned (at the end of the parallel region: no barrier here), except
+// bad_is_nan, which finish_report() fills in.
 void integrate(const IntegratorSettings& s, ContactList& ball_contacts,
                const std::vector<Wrench>& a_side, const std::vector<Vec3>& reference,
                BodyStore& bodies, BallStore& balls, IntegrationReport& report);
+
+// Serially, after integrate(): says whether the bad body, if any, went non-finite.
+void finish_report(const BodyStore& bodies, IntegrationReport& report);
 
 }  // namespace ballast

@@ -24,6 +24,7 @@
 #include "engine/pair_table.hpp"
 #include "engine/rigid_rotation.hpp"
 #include "engine/servo.hpp"
+#include "engine/timed_split.hpp"
 #include "engine/timestep.hpp"
 #include "engine/walls.hpp"
 
@@ -165,6 +166,9 @@ class Simulation {
   CellList cells_;
   ContactList ball_contacts_, wall_contacts_;
   std::vector<Wrench> a_side_;  // per body, this step: wrenches of its balls' side-a contacts
+  // Thread shares of the force pass and of the integrator, following measured time
+  // (timed_split.hpp): they move which thread computes a body, never a bit.
+  TimedSplit contact_split_, integrate_split_;
   std::vector<Vec3> reference_positions_;  // ball positions at the last neighbour build
   std::vector<Vec3> wall_reference_;       // wall displacements at the last build
   std::vector<Vec3> wall_force_;

@@ -10,25 +10,31 @@
 
 #include <omp.h>
 
+#include <cmath>
 #include <utility>
 
+#include "engine/timed_split.hpp"
 #include "engine/types.hpp"
 
 namespace ballast {
 
 // The calling thread's share [lo, hi) of items [0, n). prefix(k) is the cost of
 // items [0, k): integer, nondecreasing, prefix(0) = 0. Outside a parallel region
-// (one thread) it is [0, n).
+// (one thread) it is [0, n). With a `split` made for this team (timed_split.hpp),
+// thread k's share of the cost is the split's measured one instead of 1/threads.
 template <class Prefix>
-std::pair<Index, Index> balanced_range(Index n, const Prefix& prefix) {
+std::pair<Index, Index> balanced_range(Index n, const Prefix& prefix,
+                                       const TimedSplit* split = nullptr) {
   const long threads = omp_get_num_threads(), t = omp_get_thread_num();
   const long total = prefix(n);
+  const bool timed = split != nullptr && split->covers(int(threads));
   // First item whose prefix reaches `target`: the boundaries are the same whichever
   // thread computes them, so the shares tile [0, n) exactly.
   const auto boundary = [&](long k) -> Index {
     if (k <= 0) return 0;
     if (k >= threads) return n;
-    const long target = total * k / threads;
+    const long target = timed ? std::lround(double(total) * split->cumulative(int(k)))
+                              : total * k / threads;
     Index lo = 0, hi = n;
     while (lo < hi) {
       const Index mid = lo + (hi - lo) / 2;

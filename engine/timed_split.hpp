@@ -1,0 +1,45 @@
+// Thread shares that follow measured time, on top of a cost model.
+//
+// balanced_range (work_split.hpp) splits a loop by a static cost per item: counts of
+// candidates, touching contacts and walls. On the sphere bench bed that model gave
+// one thread 19 % more force-pass time than the other (perf, 2 threads), so the
+// faster one waited at every barrier; and on a shared host one vCPU is often slower
+// than the other for reasons no cost model sees. Like LAMMPS's `balance ... weight
+// time`, a TimedSplit keeps each thread's measured speed (its share of the modelled
+// cost per second, smoothed over steps) and hands out the next step's shares in
+// proportion to it, so the threads finish together.
+//
+// Which thread computes an item never changes what is computed (every item's result
+// is its own, and sums run in item order), so the split moves time, never bits.
+#pragma once
+
+#include <vector>
+
+namespace ballast {
+
+class TimedSplit {
+ public:
+  // Serially, before the parallel region: sizes the split for `threads`, starting
+  // from equal shares when the count changes.
+  void prepare(int threads);
+  // Whether the shares were made for a team of `threads` (balanced_range falls back
+  // to equal shares otherwise).
+  bool covers(int threads) const { return threads == threads_ && threads > 1; }
+  // Fraction of the modelled cost before thread k's share: 0 for k = 0, 1 for
+  // k = threads, nondecreasing.
+  double cumulative(int k) const { return cumulative_[k]; }
+  // In the region, by thread t only: the seconds its share took this step.
+  void record(int t, double seconds) { seconds_[t] = seconds; }
+  // Serially, after the region: folds this step's times into the speeds and remakes
+  // the shares.
+  void update();
+
+ private:
+  int threads_ = 0;
+  bool measured_ = false;           // speeds hold a measurement
+  std::vector<double> speed_;       // share of the cost per second, smoothed
+  std::vector<double> seconds_;     // this step's, per thread (0: not recorded)
+  std::vector<double> cumulative_;  // size threads + 1
+};
+
+}  // namespace ballast
