@@ -1,0 +1,84 @@
+#!/usr/bin/python3
+"""Where each of two threads spends a bench-bed run (docs/PERFORMANCE.md, "What bought
+what": why the thread shares follow measured time, engine/timed_split.hpp).
+
+    tests/bench/peers/thread_time.py [build/peers/spheres.txt] [--steps 20000]
+    BALLAST=build/revisions/d757b2d/build/study/ballast tests/bench/peers/thread_time.py
+
+Runs `ballast bench-bed` on 2 threads with the benchmark's physics under `perf record`
+(cpu-clock sampling: this VM exposes no hardware counters) and prints, per thread, the
+share of its samples in the force pass, in the gather and integration, in the serial
+part of the step (the main thread alone) and in OpenMP (libgomp: waiting at the
+barriers and at the start of the next step's region). Threads that finish their
+shares together wait little; the difference between the two threads' force-pass
+shares is the imbalance of the split. Needs linux-perf and a cached bed (run `make
+bench-peers` once).
+"""
+import argparse
+import collections
+import os
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from physics import Physics  # noqa: E402
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+
+
+def phase(symbol, dso):
+    """The part of the step a sample belongs to."""
+    if "libgomp" in dso:
+        return "OpenMP wait"
+    if "contact_pass" in symbol or "compute_contacts" in symbol:
+        return "force pass"
+    if "integrate" in symbol or "step_bod" in symbol or "gather_body_force" in symbol:
+        return "integrator"
+    return "serial and other"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("bed", nargs="?", default=os.path.join(ROOT, "build", "peers", "spheres.txt"))
+    ap.add_argument("--steps", type=int, default=20000)
+    args = ap.parse_args()
+    if not os.path.exists(args.bed):
+        sys.exit(f"thread_time.py: no bed at {args.bed} (run make bench-peers once)")
+    ballast = os.environ.get("BALLAST", os.path.join(ROOT, "build", "study", "ballast"))
+    p = Physics()
+    with tempfile.TemporaryDirectory() as work:
+        data = os.path.join(work, "perf.data")
+        run = ["perf", "record", "-q", "-F", "5000", "-o", data, ballast, "bench-bed", args.bed,
+               "--steps", str(args.steps), "--threads", "2", "--json", "--stiffness",
+               repr(p.stiffness), "--friction", repr(p.friction), "--dt", repr(p.dt),
+               "--density", repr(p.density)]
+        subprocess.run(run, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                       env=dict(os.environ, OMP_NUM_THREADS="2"))
+        script = subprocess.run(["perf", "script", "-i", data, "-F", "tid,ip,sym,dso",
+                                 "--hide-call-graph"], check=True, capture_output=True, text=True)
+    per_thread = collections.defaultdict(collections.Counter)
+    for line in script.stdout.splitlines():
+        fields = line.split(None, 1)
+        if len(fields) < 2 or not fields[0].isdigit():
+            continue
+        tid, rest = fields
+        dso = rest[rest.rfind("(") + 1:].rstrip(")") if "(" in rest else ""
+        per_thread[int(tid)][phase(rest, dso)] += 1
+    # The two threads of the run are the two with the most samples; the main one
+    # (lowest id) also runs the serial part.
+    threads = sorted(sorted(per_thread, key=lambda t: -sum(per_thread[t].values()))[:2])
+    names = ["force pass", "integrator", "serial and other", "OpenMP wait"]
+    print(f"{os.path.basename(ballast)} on {os.path.basename(args.bed)}, {args.steps} steps, "
+          "2 threads: share of each thread's perf samples")
+    print("| thread | samples | " + " | ".join(names) + " |")
+    print("|---" * (len(names) + 2) + "|")
+    for k, t in enumerate(threads):
+        c = per_thread[t]
+        n = sum(c.values())
+        cells = " | ".join(f"{100.0 * c[x] / n:.1f} %" for x in names)
+        print(f"| {'main' if k == 0 else 'other'} | {n} | {cells} |")
+
+
+if __name__ == "__main__":
+    main()
