@@ -140,12 +140,12 @@ void integrate(const IntegratorSettings& s, ContactList& ball_contacts,
 
   if (s.split != nullptr) s.split->record(omp_get_thread_num(), omp_get_wtime() - start);
 
-  // Per-thread results combined with max/min: exact in any order, so the report
-  // does not depend on the thread count. No barrier after it: the end of the
-  // caller's parallel region is one (a barrier and an `omp single` here cost two
-  // more waits per step).
 #pragma omp critical(ballast_integrate_report)
   {
+    // Per-thread results combined with max/min: exact in any order, so the report
+    // does not depend on the thread count. No barrier after it: the end of the
+    // caller's parallel region is one (a barrier and an `omp single` here cost two
+    // more waits per step).
     report.max_ball_shift2 = std::max(report.max_ball_shift2, mine.shift2);
     if (mine.bad != std::numeric_limits<Index>::max() &&
         (report.bad_body == kNoIndex || mine.bad < report.bad_body))

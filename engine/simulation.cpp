@@ -405,8 +405,8 @@ float Simulation::far_gap() const {
 // build, and a settled one seldom. The headroom is small because a settled bed has
 // many nearly touching pairs, each of which within it costs a distance test every
 // step (the sphere bench bed: 1,232 of its 3,588 open candidates lie within 1/64
-// skin, 516 within 1 µm; tests/bench/peers/near_gaps.py). Float arithmetic rounds to nearest, which cannot fall
-// below `bound`, since 2·bound + m exceeds it.
+// skin, 516 within 1 µm; tests/bench/peers/near_gaps.py). Float arithmetic rounds to nearest, which
+// cannot fall below `bound`, since 2·bound + m exceeds it.
 float Simulation::live_cover_above(float bound) const {
   if (std::isinf(bound)) return bound;
   return 2.0f * bound + static_cast<float>(skin_ / 65536.0);
@@ -463,11 +463,14 @@ void Simulation::step() {
   const float bound = far_gap();
   const bool refresh_live = !(bound <= ball_contacts_.live_cover);
   if (refresh_live) ball_contacts_.live_cover = live_cover_above(bound);
+  // On one thread there is nothing to share, and the passes skip their timers.
   const int threads = omp_get_max_threads();
   contact_split_.prepare(threads);
   integrate_split_.prepare(threads);
-  const ForceSettings fs{dt_,          settings_.damping_ratio, friction_, all_spheres_,
-                         refresh_live, &contact_split_};
+  TimedSplit* const contact_split = threads > 1 ? &contact_split_ : nullptr;
+  TimedSplit* const integrate_split = threads > 1 ? &integrate_split_ : nullptr;
+  const ForceSettings fs{
+      dt_, settings_.damping_ratio, friction_, all_spheres_, refresh_live, contact_split};
   const IntegratorSettings is{dt_,
                               settings_.local_damping,
                               settings_.gravity,
@@ -475,7 +478,7 @@ void Simulation::step() {
                               settings_.rotation,
                               all_spheres_,
                               refresh_live,
-                              &integrate_split_};
+                              integrate_split};
   IntegrationReport r;
   // One parallel region per step and one barrier inside it: the force pass
   // (forces.hpp), then per body gather + integrate (integrator.hpp); the region's end

@@ -2,12 +2,13 @@
 //
 // balanced_range (work_split.hpp) splits a loop by a static cost per item: counts of
 // candidates, touching contacts and walls. On the sphere bench bed that model gave
-// one thread 19 % more force-pass time than the other (perf, 2 threads), so the
-// faster one waited at every barrier; and on a shared host one vCPU is often slower
-// than the other for reasons no cost model sees. Like LAMMPS's `balance ... weight
-// time`, a TimedSplit keeps each thread's measured speed (its share of the modelled
-// cost per second, smoothed over steps) and hands out the next step's shares in
-// proportion to it, so the threads finish together.
+// one thread 1.4 times the other's force-pass time in perf's samples
+// (tests/bench/peers/thread_time.py, 2 threads), so the other waited at every
+// barrier; and on a shared host one vCPU is often slower than the other for reasons
+// no cost model sees. Like LAMMPS's `balance ... weight time`, a TimedSplit keeps
+// each thread's measured speed (its share of the modelled cost per second, smoothed
+// over steps) and hands out the next step's shares in proportion to it, so the
+// threads finish together.
 //
 // Which thread computes an item never changes what is computed (every item's result
 // is its own, and sums run in item order), so the split moves time, never bits.

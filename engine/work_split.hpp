@@ -33,8 +33,8 @@ std::pair<Index, Index> balanced_range(Index n, const Prefix& prefix,
   const auto boundary = [&](long k) -> Index {
     if (k <= 0) return 0;
     if (k >= threads) return n;
-    const long target = timed ? std::lround(double(total) * split->cumulative(int(k)))
-                              : total * k / threads;
+    const long target =
+        timed ? std::lround(double(total) * split->cumulative(int(k))) : total * k / threads;
     Index lo = 0, hi = n;
     while (lo < hi) {
       const Index mid = lo + (hi - lo) / 2;

@@ -13,7 +13,9 @@
 namespace ballast {
 namespace {
 
-double share(const TimedSplit& s, int t) { return s.cumulative(t + 1) - s.cumulative(t); }
+double share(const TimedSplit& s, int t) {
+  return s.cumulative(t + 1) - s.cumulative(t);
+}
 
 // One step in which thread t needs seconds_per_share[t] for the whole cost.
 void step(TimedSplit& s, const std::vector<double>& seconds_per_share) {
