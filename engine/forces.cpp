@@ -6,9 +6,6 @@
 #include <omp.h>
 
 #include "engine/contact_law.hpp"
-#if defined(__SSE2__)
-#include "engine/v3x2.hpp"
-#endif
 #include "engine/work_split.hpp"
 
 namespace ballast {
@@ -173,83 +170,6 @@ template <bool kFriction, bool kDamped, bool kSpheres>
   }
 }
 
-#if defined(__SSE2__)
-// Two live candidates c0, c1 of sphere i at once, in the lanes of v3x2.hpp: the
-// operations of ball_ball<true, false, true> and linear_contact<true, false>, lane by
-// lane in the same order, with the law's branches (turning the shear force into the
-// new plane, the Coulomb cap) as selects. Both lanes compute both sides, so the
-// rare square roots and divisions cost every pair; in exchange a sphere bed's two
-// contacts per ball share one pass of instructions (a touching contact took 208 of
-// them alone, `tests/bench/peers/callgrind_per_step.sh`). If either pair is open,
-// each is evaluated alone, as before.
-[[gnu::always_inline]] inline void sphere_pair(const BallView& balls, const BodyView& bodies,
-                                               const PairTable& pairs, const ForceSettings& s,
-                                               const ContactView& cl, Index c0, Index c1, Index i,
-                                               const V3& xi, double ri, V3& f, V3& t) {
-  const Index j0 = cl.b[c0], j1 = cl.b[c1];
-  const V3x2 d = splat(xi) - lanes(balls.position[j0], balls.position[j1]);
-  const D2 rj = lanes(&balls.radius[j0], &balls.radius[j1]);
-  const D2 dist2 = dot(d, d);
-  const D2 reach = splat(ri) + rj;
-  if (bits(reach * reach > dist2) != 3) {
-    ball_ball<true, false, true>(balls, bodies, pairs, s, cl, c0, i, xi, ri, f, t);
-    ball_ball<true, false, true>(balls, bodies, pairs, s, cl, c1, i, xi, ri, f, t);
-    return;
-  }
-  const D2 dist = sqrt(dist2);
-  const V3x2 n = (splat(1.0) / dist) * d;  // from j towards i
-  const D2 overlap = reach - dist;
-  const PairProperties& p0 = pairs.balls(balls.material[i], balls.material[j0]);
-  const PairProperties& p1 = pairs.balls(balls.material[i], balls.material[j1]);
-  const D2 half = splat(0.5);
-  const D2 li = splat(ri) - half * overlap, lj = rj - half * overlap;
-  const V3x2 vrel =
-      (splat(load(bodies.velocity[i])) - lanes(bodies.velocity[j0], bodies.velocity[j1])) -
-      cross(li * splat(load(bodies.angular_velocity[i])) +
-                lj * lanes(bodies.angular_velocity[j0], bodies.angular_velocity[j1]),
-            n);
-  // linear_contact<true, false>, lane by lane.
-  const D2 ks = lanes(&p0.ks, &p1.ks);
-  const D2 fn = lanes(&p0.kn, &p1.kn) * overlap;
-  const D2 vn = dot(vrel, n);
-  V3x2 force = fn * n;
-  V3x2 h = lanes(cl.shear_force[c0], cl.shear_force[c1]);
-  const D2 old_mag2 = dot(h, h);
-  const D2 off_plane = dot(h, n);
-  h = h - off_plane * n;
-  const D2 one = splat(1.0), zero = splat(0.0);
-  const D2 new_mag2 = dot(h, h);
-  const M2 turned = (off_plane * off_plane > splat(0x1p-54) * old_mag2) & (new_mag2 > zero);
-  h = select(turned, sqrt(old_mag2 / new_mag2), one) * h;  // times 1: the same bits
-  const V3x2 vs = vrel - vn * n;
-  h = h - (ks * splat(s.dt)) * vs;
-  const D2 limit = lanes(&p0.mu, &p1.mu) * fn;
-  const D2 mag2 = dot(h, h);
-  const M2 slides = mag2 > limit * limit;
-  const D2 mag = sqrt(mag2);
-  const D2 slip = select(slides & (ks > zero), limit * (mag - limit) / ks, zero);
-  h = select(slides, limit / mag, one) * h;
-  force = force + h;
-  store_lanes(cl.shear_force[c0], cl.shear_force[c1], h);
-  cl.active[c0] = cl.active[c1] = 1;
-  _mm_storel_pd(&cl.normal_force[c0], fn.v);
-  _mm_storeh_pd(&cl.normal_force[c1], fn.v);
-  if (lane0(slip) != 0.0) cl.slip_total[c0] += lane0(slip);
-  if (lane1(slip) != 0.0) cl.slip_total[c1] += lane1(slip);
-  // The wrenches, as ball_ball's two-sphere branch: c0's added first.
-  const V3x2 nxf = cross(n, force);
-  const V3x2 torque_i = (-li) * nxf;
-  f += lane0(force);
-  t += lane0(torque_i);
-  f += lane1(force);
-  t += lane1(torque_i);
-  Wrench& w0 = cl.b_wrench[c0];
-  Wrench& w1 = cl.b_wrench[c1];
-  store_lanes(w0.force, w1.force, -force);
-  store_lanes(w0.torque, w1.torque, (-lj) * nxf);
-}
-#endif
-
 // Ball–wall contact c of ball i. Adds the wrench on i to (f, t) and stores the force
 // on the wall.
 template <bool kFriction, bool kDamped, bool kSpheres>
@@ -331,14 +251,7 @@ void contact_pass(const BallStore& ball_store, const BodyStore& body_store, cons
       const double r = balls.radius[i];
       // The live candidates only: one left off is a far candidate that was not
       // touching and still is not, with nothing to evaluate or clear.
-      Index e = bc.a_first[i];
-      const Index live_end = bc.live_a_end[i];
-#if defined(__SSE2__)
-      if constexpr (kSpheres && kFriction && !kDamped)
-        for (; e + 1 < live_end; e += 2)
-          sphere_pair(balls, bodies, pairs, s, bc, bc.live_a[e], bc.live_a[e + 1], i, x, r, f, t);
-#endif
-      for (; e < live_end; ++e)
+      for (Index e = bc.a_first[i]; e < bc.live_a_end[i]; ++e)
         ball_ball<kFriction, kDamped, kSpheres>(balls, bodies, pairs, s, bc, bc.live_a[e], i, x, r,
                                                 f, t);
       if (has_walls)
