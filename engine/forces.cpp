@@ -42,6 +42,7 @@ struct ContactView {
   double* slip_total;
   double* viscous_total;
   std::uint8_t* active;
+  std::uint8_t* slid;  // null in a frictionless scene
 };
 
 BallView view(const BallStore& s) {
@@ -61,7 +62,8 @@ ContactView view(ContactList& c) {
           c.normal_force.data(),
           c.slip_total.data(),
           c.viscous_total.data(),
-          c.active.data()};
+          c.active.data(),
+          c.slid.data()};
 }
 
 // A contact whose entities no longer overlap: PFC drops its shear force. Its b-side
@@ -76,12 +78,16 @@ template <bool kFriction>
 }
 
 // Bookkeeping every touching contact does: flags, elastic normal force, energy.
+// slid_before: the contact slid at its last evaluation (linear_contact's hint).
 template <bool kDamped>
-[[gnu::always_inline]] inline void record(const ContactView& cl, Index c, const ContactResult& r) {
+[[gnu::always_inline]] inline void record(const ContactView& cl, Index c, const ContactResult& r,
+                                          bool slid_before) {
   cl.active[c] = 1;
   cl.normal_force[c] = r.normal_force;
   // Slip work is zero unless the contact slides, which is rare once a bed settles.
-  if (r.slip_work != 0.0) cl.slip_total[c] += r.slip_work;
+  // After a step that slid, the work is added whether zero or not, without waiting
+  // for it (adding +0 to a sum of non-negative terms changes no bit).
+  if (slid_before || r.slip_work != 0.0) cl.slip_total[c] += r.slip_work;
   if constexpr (kDamped) cl.viscous_total[c] += r.viscous_work;
 }
 
@@ -103,10 +109,18 @@ template <bool kFriction, bool kDamped>
   }
   st.dt = s.dt;
   V3 hist{0.0, 0.0, 0.0};
-  if constexpr (kFriction) hist = load(cl.shear_force[c]);
-  const ContactResult r = linear_contact<kFriction, kDamped>(st, hist);
-  if constexpr (kFriction) store(cl.shear_force[c], hist);
-  record<kDamped>(cl, c, r);
+  bool slid = false;
+  if constexpr (kFriction) {
+    hist = load(cl.shear_force[c]);
+    slid = cl.slid[c];
+  }
+  const bool slid_before = slid;
+  const ContactResult r = linear_contact<kFriction, kDamped>(st, hist, slid);
+  if constexpr (kFriction) {
+    store(cl.shear_force[c], hist);
+    cl.slid[c] = slid;
+  }
+  record<kDamped>(cl, c, r, slid_before);
   return r;
 }
 
