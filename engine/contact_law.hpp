@@ -4,9 +4,7 @@
 // evaluates one contact.
 #pragma once
 
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <string_view>
 
 #include "engine/types.hpp"
@@ -46,19 +44,8 @@ struct ContactResult {
 //
 // Always inlined into the force loop, where the state and result then live in
 // registers (GCC otherwise kept it out of line and passed them through memory).
-// a if yes, else b, without a branch (GCC turns a ?: on doubles into a jump).
-[[gnu::always_inline]] inline double pick(bool yes, double a, double b) {
-  const std::uint64_t m = -std::uint64_t(yes);
-  return std::bit_cast<double>((std::bit_cast<std::uint64_t>(a) & m) |
-                               (std::bit_cast<std::uint64_t>(b) & ~m));
-}
-
-// `slid`: in, whether the Coulomb cap bit at this contact's last evaluation; out,
-// whether it bites now. It only steers how the cap is computed, never what it gives
-// (see the cap below).
 template <bool kFriction, bool kDamped>
-[[gnu::always_inline]] inline ContactResult linear_contact(const ContactState& c, V3& shear_force,
-                                                           bool& slid) {
+[[gnu::always_inline]] inline ContactResult linear_contact(const ContactState& c, V3& shear_force) {
   ContactResult r{};
   r.normal_force = c.kn * c.overlap;
   const double vn = dot(c.vrel, c.normal);
@@ -82,27 +69,14 @@ template <bool kFriction, bool kDamped>
     shear_force = shear_force - (c.ks * c.dt) * vs;
     const double limit = c.mu * r.normal_force;
     const double mag2 = dot(shear_force, shear_force);
-    const bool slides = mag2 > limit * limit;
-    if (slid) {
-      // It slid last step, and most likely slides again. The test above is the last
-      // link of the contact's chain of square roots and divisions; a branch on it
-      // resolves that late, and when it was mispredicted (a quarter of a vibrating
-      // sphere bed's contacts slide, in no pattern) the next contact's work, already
-      // under way, was thrown away with it. So the cap is computed here and kept or
-      // not by a mask: the same numbers (a factor 1 leaves the force as it is), and
-      // the branch that steers it reads a flag known at the start of the contact.
-      const double mag = std::sqrt(mag2);
-      const double work = c.ks > 0.0 ? limit * (mag - limit) / c.ks : 0.0;
-      r.slip_work = pick(slides, work, 0.0);
-      shear_force = pick(slides, limit / mag, 1.0) * shear_force;
-    } else if (slides) {
+    if (mag2 > limit * limit) {
       const double mag = std::sqrt(mag2);
       // The spring would have stretched (mag - limit)/ks beyond the slider; that
       // displacement slips against a friction force of `limit`.
       r.slip_work = c.ks > 0.0 ? limit * (mag - limit) / c.ks : 0.0;
       shear_force = (limit / mag) * shear_force;
+      sliding = true;
     }
-    sliding = slid = slides;
     f += shear_force;
     if constexpr (kDamped) {
       if (c.cs > 0.0 && !sliding) {
@@ -121,12 +95,6 @@ template <bool kFriction, bool kDamped>
   }
   r.force = f;
   return r;
-}
-
-template <bool kFriction, bool kDamped>
-[[gnu::always_inline]] inline ContactResult linear_contact(const ContactState& c, V3& shear_force) {
-  bool slid = false;
-  return linear_contact<kFriction, kDamped>(c, shear_force, slid);
 }
 
 // Dashpot coefficient for a damping ratio β on a spring k between effective mass m:

@@ -29,7 +29,6 @@ void ContactList::rebuild(std::vector<Index>&& new_a, std::vector<Index>&& new_b
   slip_total.assign(n, 0.0);
   viscous_total.assign(n, 0.0);
   active.assign(n, 0);
-  slid.assign(n, 0);
   gap_at_build.assign(n, -std::numeric_limits<float>::infinity());
 
   // Side a: the list is sorted by a, so each ball's contacts are one range.

@@ -73,9 +73,6 @@ struct ContactList {
   std::vector<double> slip_total;     // J dissipated by Coulomb slip since the last rebuild
   std::vector<double> viscous_total;  // J dissipated by the dashpots since the last rebuild
   std::vector<std::uint8_t> active;   // 1 while overlapping
-  // 1 if the Coulomb cap bit at the contact's last evaluation: a hint that steers how
-  // the force pass computes the cap (contact_law.hpp), never what it gives.
-  std::vector<std::uint8_t> slid;
   // m, the gap at the last build rounded down to a float (half the bytes to stream);
   // −∞ until record_build_gaps(), which no skip test passes.
   std::vector<float> gap_at_build;

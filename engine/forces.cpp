@@ -42,7 +42,6 @@ struct ContactView {
   double* slip_total;
   double* viscous_total;
   std::uint8_t* active;
-  std::uint8_t* slid;  // null in a frictionless scene
 };
 
 BallView view(const BallStore& s) {
@@ -62,8 +61,7 @@ ContactView view(ContactList& c) {
           c.normal_force.data(),
           c.slip_total.data(),
           c.viscous_total.data(),
-          c.active.data(),
-          c.slid.data()};
+          c.active.data()};
 }
 
 // A contact whose entities no longer overlap: PFC drops its shear force. Its b-side
@@ -78,16 +76,12 @@ template <bool kFriction>
 }
 
 // Bookkeeping every touching contact does: flags, elastic normal force, energy.
-// slid_before: the contact slid at its last evaluation (linear_contact's hint).
 template <bool kDamped>
-[[gnu::always_inline]] inline void record(const ContactView& cl, Index c, const ContactResult& r,
-                                          bool slid_before) {
+[[gnu::always_inline]] inline void record(const ContactView& cl, Index c, const ContactResult& r) {
   cl.active[c] = 1;
   cl.normal_force[c] = r.normal_force;
   // Slip work is zero unless the contact slides, which is rare once a bed settles.
-  // After a step that slid, the work is added whether zero or not, without waiting
-  // for it (adding +0 to a sum of non-negative terms changes no bit).
-  if (slid_before || r.slip_work != 0.0) cl.slip_total[c] += r.slip_work;
+  if (r.slip_work != 0.0) cl.slip_total[c] += r.slip_work;
   if constexpr (kDamped) cl.viscous_total[c] += r.viscous_work;
 }
 
@@ -109,18 +103,10 @@ template <bool kFriction, bool kDamped>
   }
   st.dt = s.dt;
   V3 hist{0.0, 0.0, 0.0};
-  bool slid = false;
-  if constexpr (kFriction) {
-    hist = load(cl.shear_force[c]);
-    slid = cl.slid[c];
-  }
-  const bool slid_before = slid;
-  const ContactResult r = linear_contact<kFriction, kDamped>(st, hist, slid);
-  if constexpr (kFriction) {
-    store(cl.shear_force[c], hist);
-    cl.slid[c] = slid;
-  }
-  record<kDamped>(cl, c, r, slid_before);
+  if constexpr (kFriction) hist = load(cl.shear_force[c]);
+  const ContactResult r = linear_contact<kFriction, kDamped>(st, hist);
+  if constexpr (kFriction) store(cl.shear_force[c], hist);
+  record<kDamped>(cl, c, r);
   return r;
 }
 
