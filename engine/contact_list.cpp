@@ -8,27 +8,35 @@ namespace ballast {
 void ContactList::rebuild(std::vector<Index>&& new_a, std::vector<Index>&& new_b, bool keep_history,
                           Index n_balls, bool b_is_ball) {
   const std::size_t n = new_a.size();
-  std::vector<Vec3> new_shear;
-  if (keep_history) {
-    // Two-pointer merge on sorted keys: O(old + new), no hashing, deterministic.
-    new_shear.assign(n, Vec3::Zero());
-    std::size_t o = 0;
-    const std::size_t old_n = a.size();
-    for (std::size_t k = 0; k < n && o < old_n; ++k) {
-      while (o < old_n && (a[o] < new_a[k] || (a[o] == new_a[k] && b[o] < new_b[k]))) ++o;
-      if (o < old_n && a[o] == new_a[k] && b[o] == new_b[k] && !shear_force.empty())
-        new_shear[k] = shear_force[o];
-    }
+  // A pair in both the old and the new set keeps what it is: touching or not, its
+  // shear force, normal force and side-b wrench. Carrying the shear force alone,
+  // with the pair marked open, let a pair that had stopped touching keep a stale
+  // shear force (the force pass clears an open contact only once), which it used
+  // if it touched again; PFC drops a contact's shear force when it breaks.
+  std::vector<Vec3> new_shear(keep_history ? n : 0, Vec3::Zero());
+  std::vector<Wrench> new_wrench(n + 1, Wrench{Vec3::Zero(), Vec3::Zero()});  // + the zero slot
+  std::vector<double> new_normal(n, 0.0);
+  std::vector<std::uint8_t> new_active(n, 0);
+  // Two-pointer merge on sorted keys: O(old + new), no hashing, deterministic.
+  std::size_t o = 0;
+  const std::size_t old_n = a.size();
+  for (std::size_t k = 0; k < n && o < old_n; ++k) {
+    while (o < old_n && (a[o] < new_a[k] || (a[o] == new_a[k] && b[o] < new_b[k]))) ++o;
+    if (o == old_n || a[o] != new_a[k] || b[o] != new_b[k] || !active[o]) continue;
+    new_active[k] = 1;
+    new_normal[k] = normal_force[o];
+    new_wrench[k] = b_wrench[o];
+    if (keep_history && !shear_force.empty()) new_shear[k] = shear_force[o];
   }
   a = std::move(new_a);
   b = std::move(new_b);
   shear_force = std::move(new_shear);
   history_ = keep_history;
-  b_wrench.assign(n + 1, Wrench{Vec3::Zero(), Vec3::Zero()});  // + the zero slot
-  normal_force.assign(n, 0.0);
+  b_wrench = std::move(new_wrench);
+  normal_force = std::move(new_normal);
+  active = std::move(new_active);
   slip_total.assign(n, 0.0);
   viscous_total.assign(n, 0.0);
-  active.assign(n, 0);
   gap_at_build.assign(n, -std::numeric_limits<float>::infinity());
 
   // Side a: the list is sorted by a, so each ball's contacts are one range.

@@ -50,3 +50,40 @@ TEST(Sliding, FrictionChangeTakesEffectMidRun) {
   const double v2 = sim.bodies().velocity[b].x();
   EXPECT_NEAR(v1 - v2, 0.5 * g * 0.05, 0.01 * 0.5 * g * 0.05);
 }
+
+// PFC drops a contact's shear force when the contact breaks. A neighbour rebuild
+// between the last step a contact touched and the first it is found open used to
+// lose that: the rebuild carried the pair's shear force but marked it open, and the
+// force pass clears only contacts it knew as touching, so the stale force stayed and
+// came back the next time the pair touched. A sphere sliding on a plane builds ~3 N
+// of shear, lifts off by 1 µm, and the list is rebuilt before the step that finds it
+// open.
+TEST(Sliding, ShearForceIsDroppedWhenAContactOpensAcrossARebuild) {
+  const double r = 0.02, rho = 2600.0, k = 1e7, dt = 1e-6, overlap = 1e-6;
+  SimulationSettings s = scenes::bare_settings(1.0);
+  s.fixed_dt = dt;
+  Simulation sim(s);
+  const Index mat = sim.add_material({2 * k, 2 * k, 0.5});
+  const Index wall =
+      sim.add_wall(scenes::plane_wall(Vec3::Zero(), Vec3::UnitZ(), {2 * k, 2 * k, 0.5}));
+  const Index b = sim.add_sphere(Vec3(0, 0, r - overlap), r, rho, mat);
+  sim.set_body_velocity(b, Vec3(0.1, 0, 0));  // k·v·dt = 1 N of shear a step, cap 5 N
+  sim.run(3);
+  ASSERT_EQ(sim.wall_contacts().size(), 1);
+  EXPECT_GT(sim.wall_contacts().shear_force[0].norm(), 2.0);
+  sim.set_body_velocity(b, Vec3(0, 0, 2.0));  // up 2 µm in the next step: 1 µm clear
+  sim.run(1);
+  sim.set_body_velocity(b, Vec3::Zero());
+  sim.set_body_angular_velocity(b, Vec3::Zero());  // the slide had spun it up
+  sim.move_wall(wall, Vec3::Zero());               // forces a rebuild at the next step
+  const long builds = sim.neighbour_builds();
+  sim.run(1);
+  EXPECT_EQ(sim.neighbour_builds(), builds + 1);
+  ASSERT_EQ(sim.wall_contacts().size(), 1);  // still a candidate, not touching
+  EXPECT_FALSE(sim.wall_contacts().active[0]);
+  EXPECT_EQ(sim.wall_contacts().shear_force[0].norm(), 0.0);
+  sim.set_body_velocity(b, Vec3(0, 0, -2.0));  // back into contact, without sliding
+  sim.run(2);                                  // moves in, then finds it touching
+  EXPECT_TRUE(sim.wall_contacts().active[0]);
+  EXPECT_LT(sim.wall_contacts().shear_force[0].norm(), 1e-6);  // a new contact: no old shear
+}
