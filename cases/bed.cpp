@@ -59,6 +59,7 @@ Simulation make_bed(const BedOptions& o) {
   s.rotation = o.rotation;
   s.sphere_fast_path = o.sphere_fast_path;
   s.skip_far_candidates = o.skip_far_candidates;
+  s.simd_lanes = o.simd_lanes;
   s.log = o.log;
   Simulation sim(s);
   // Balls and side walls share one material; the base is rubber or the same.

@@ -36,6 +36,9 @@ struct BenchBedOptions {
   // SimulationSettings::skip_far_candidates; false measures what the skip saves, in
   // one binary, with the same bits.
   bool skip_far_candidates = true;
+  // SimulationSettings::simd_lanes: 0 measures what the SIMD sphere kernel saves, in
+  // one binary, with the same bits.
+  int simd_lanes = -1;
   std::ostream* log = nullptr;  // dt report and warnings
 };
 

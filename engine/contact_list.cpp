@@ -54,6 +54,7 @@ void ContactList::rebuild(std::vector<Index>&& new_a, std::vector<Index>&& new_b
   std::vector<Index> fill(b_first.begin(), b_first.end() - 1);
   for (std::size_t c = 0; c < n; ++c) b_contact[fill[b[c]]++] = static_cast<Index>(c);
   live_cover = -std::numeric_limits<float>::infinity();
+  flat_live_current = false;
   live.assign(n, 0);
   live_a.assign(n, 0);
   live_b.assign(n, 0);
@@ -93,6 +94,22 @@ void ContactList::refresh_live_b(Index first, Index last) {
     w += mark[c];
   }
   live_b_end[first] = w;
+}
+
+void ContactList::make_flat_live() {
+  const Index n_balls = static_cast<Index>(live_a_end.size());
+  flat_first.resize(n_balls + 1);
+  flat_c.clear();
+  flat_a.clear();
+  flat_first[0] = 0;
+  for (Index i = 0; i < n_balls; ++i) {
+    for (Index e = a_first[i]; e < live_a_end[i]; ++e) {
+      flat_c.push_back(live_a[e]);
+      flat_a.push_back(i);
+    }
+    flat_first[i + 1] = static_cast<Index>(flat_c.size());
+  }
+  flat_live_current = true;
 }
 
 void ContactList::record_build_gaps(const std::vector<Vec3>& position,

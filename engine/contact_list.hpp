@@ -97,6 +97,15 @@ struct ContactList {
   std::vector<std::uint8_t> live;
   std::vector<Index> live_a, live_a_end, live_b, live_b_end;
 
+  // The live side-a candidates of all balls as one flat sequence, in contact order
+  // (ball–ball lists only; make_flat_live()): flat_c[k] is a contact, flat_a[k] its
+  // side a, and ball i's are flat_first[i] .. flat_first[i + 1]. The SIMD sphere
+  // kernel takes them a register's width at a time, with no loop per ball.
+  std::vector<Index> flat_c, flat_a, flat_first;
+  // Whether the flat sequence matches the live lists: cleared by rebuild() and by the
+  // caller when it remakes the lists without it, set by make_flat_live().
+  bool flat_live_current = false;
+
   Index size() const { return static_cast<Index>(a.size()); }
   // Total force on a, N (b receives its opposite).
   Vec3 force(Index c) const { return -b_wrench[c].force; }
@@ -117,6 +126,9 @@ struct ContactList {
   // Makes the live side-b list of the body whose balls are [first, last), from the
   // live marks of refresh_live_a (which must have run for every ball).
   void refresh_live_b(Index first, Index last);
+  // Makes the flat sequence from the live side-a lists of every ball (serially,
+  // after refresh_live_a has run for all of them).
+  void make_flat_live();
 
   // Adds each contact's dissipated work to the ledgers of its side-a ball (in
   // contact order, so the sums do not depend on threads) and zeroes it.

@@ -6,6 +6,7 @@
 #include <omp.h>
 
 #include "engine/contact_law.hpp"
+#include "engine/sphere_kernel.hpp"
 #include "engine/work_split.hpp"
 
 namespace ballast {
@@ -208,6 +209,53 @@ template <bool kFriction, bool kDamped, bool kSpheres>
   store(cl.b_wrench[c].force, -res.force);
 }
 
+// A sphere scene's share [lo, hi) in SIMD lanes: the kernel sets each ball's side-a
+// wrench to its ball–ball sum, then its wall contacts add to it, as in the scalar
+// pass's order (ball–ball contacts, then walls).
+template <bool kFriction>
+void sphere_pass_simd(const BallStore& ball_store, const BodyStore& body_store,
+                      const PairTable& pairs, const std::vector<Wall>& walls,
+                      const ForceSettings& s, ContactList& bc_list, ContactList& wc_list,
+                      std::vector<Wrench>& a_side_store, Index lo, Index hi) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Wrench) == 6 * sizeof(double));
+  static_assert(sizeof(PairProperties) == 3 * sizeof(double) && sizeof(Index) == 4);
+  SphereKernelView k;
+  k.position = ball_store.position.data()->data();
+  k.radius = ball_store.radius.data();
+  k.velocity = body_store.velocity.data()->data();
+  k.angular_velocity = body_store.angular_velocity.data()->data();
+  k.material = ball_store.material.data();
+  k.pair = &pairs.balls(0, 0).kn;
+  k.materials = pairs.ball_materials();
+  k.dt = s.dt;
+  k.b = bc_list.b.data();
+  k.flat_c = bc_list.flat_c.data();
+  k.flat_a = bc_list.flat_a.data();
+  k.flat_first = bc_list.flat_first.data();
+  k.shear_force = kFriction ? bc_list.shear_force.data()->data() : nullptr;
+  k.b_wrench = bc_list.b_wrench.data()->force.data();
+  k.normal_force = bc_list.normal_force.data();
+  k.slip_total = bc_list.slip_total.data();
+  k.active = bc_list.active.data();
+  k.a_side = a_side_store.data()->force.data();
+  sphere_kernel_ball_ball(k, lo, hi, s.sphere_kernel_lanes);
+  if (wc_list.size() == 0) return;
+  const BallView balls = view(ball_store);
+  const BodyView bodies = view(body_store);
+  const ContactView wc = view(wc_list);
+  Wrench* const a_side = a_side_store.data();
+  for (Index i = lo; i < hi; ++i) {
+    if (wc.a_first[i] == wc.a_first[i + 1]) continue;
+    V3 f = load(a_side[i].force), t = load(a_side[i].torque);
+    const V3 x = load(balls.position[i]);
+    const double r = balls.radius[i];
+    for (Index c = wc.a_first[i]; c < wc.a_first[i + 1]; ++c)
+      ball_wall<kFriction, false, true>(balls, bodies, pairs, walls, s, wc, c, i, x, r, f, t);
+    store(a_side[i].force, f);
+    store(a_side[i].torque, t);
+  }
+}
+
 template <bool kFriction, bool kDamped, bool kSpheres>
 void contact_pass(const BallStore& ball_store, const BodyStore& body_store, const PairTable& pairs,
                   const std::vector<Wall>& walls, const ForceSettings& s, ContactList& bc_list,
@@ -240,6 +288,14 @@ void contact_pass(const BallStore& ball_store, const BodyStore& body_store, cons
       },
       s.split);
   if (s.refresh_live) bc_list.refresh_live_a(ball_start(lo), ball_start(hi));
+  if constexpr (kSpheres && !kDamped) {
+    if (s.sphere_kernel_lanes > 0) {
+      sphere_pass_simd<kFriction>(ball_store, body_store, pairs, walls, s, bc_list, wc_list,
+                                  a_side_store, lo, hi);
+      if (s.split != nullptr) s.split->record(omp_get_thread_num(), omp_get_wtime() - start);
+      return;
+    }
+  }
   for (Index body = lo; body < hi; ++body) {
     // One wrench per body, summed in registers over all its balls' side-a contacts:
     // a clump's balls mostly touch nothing, and a store and a reload of 48 bytes per

@@ -28,6 +28,11 @@ struct ForceSettings {
   double damping_ratio = 0.0;  // viscous contact damping ratio β (0: none)
   bool friction = true;        // false: frictionless scene, no shear history
   bool all_spheres = false;    // every body is one ball and ball k is body k
+  // > 0: the ball–ball contacts go through the SIMD sphere kernel of that many lanes
+  // (sphere_kernel.hpp): a scene of spheres only (all_spheres), without dashpots,
+  // whose flat live list (ContactList::make_flat_live) is current. Simulation::step
+  // decides and keeps the list current; the kernel gives the scalar pass's bits.
+  int sphere_kernel_lanes = 0;
   // The pass evaluates the ball–ball list's live candidates only, so the caller
   // keeps its live_cover at or above the bound on how far a gap can have closed
   // (contact_list.hpp, "Far candidates", "Live candidates"; Simulation::far_gap()).

@@ -33,6 +33,7 @@ class PairTable {
     }
   }
   const PairProperties& balls(Index mi, Index mj) const { return ball_ball_[mi * materials_ + mj]; }
+  Index ball_materials() const { return materials_; }
   const PairProperties& wall(Index mi, Index w) const { return ball_wall_[mi * walls_ + w]; }
 
  private:

@@ -11,6 +11,7 @@
 #include "engine/errors.hpp"
 #include "engine/forces.hpp"
 #include "engine/integrator.hpp"
+#include "engine/sphere_kernel.hpp"
 #include "engine/timestep.hpp"
 
 namespace ballast {
@@ -291,6 +292,11 @@ void Simulation::validate() const {
     require_setup(*s.fixed_dt > 0.0 && std::isfinite(*s.fixed_dt), "dt", *s.fixed_dt, "> 0 s");
   if (s.skin) require_setup(*s.skin > 0.0, "skin", *s.skin, "> 0 m");
   require_setup(s.max_speed > 0.0, "max_speed", s.max_speed, "> 0 m/s");
+  require_setup(s.simd_lanes == -1 || s.simd_lanes == 0 || sphere_kernel_supported(s.simd_lanes),
+                "simd_lanes", s.simd_lanes,
+                std::string("-1 (the widest), 0 (none)") +
+                    (sphere_kernel_supported(4) ? ", 4" : "") +
+                    (sphere_kernel_supported(8) ? ", 8" : "") + " on this CPU");
   require_setup(s.gravity.allFinite(), "gravity", vec_str(s.gravity), "finite");
   std::string models;
   bool known = false;
@@ -463,21 +469,35 @@ void Simulation::step() {
   const float bound = far_gap();
   const bool refresh_live = !(bound <= ball_contacts_.live_cover);
   if (refresh_live) ball_contacts_.live_cover = live_cover_above(bound);
+  // The SIMD sphere kernel takes the live candidates from one flat list, made here,
+  // serially, whenever the live lists are remade (rare in a settled bed) or the
+  // kernel comes into use; the side-b lists are then remade by the integrator.
+  const int lanes = settings_.simd_lanes < 0 ? sphere_kernel_best_lanes() : settings_.simd_lanes;
+  const bool kernel = all_spheres_ && settings_.damping_ratio == 0.0 && lanes > 0;
+  kernel_lanes_ = kernel ? lanes : 0;
+  const bool make_flat = kernel && (refresh_live || !ball_contacts_.flat_live_current);
+  if (make_flat) {
+    ball_contacts_.refresh_live_a(0, balls_.size());
+    ball_contacts_.make_flat_live();
+  } else if (refresh_live) {
+    ball_contacts_.flat_live_current = false;  // the force pass remakes the lists below
+  }
   // On one thread there is nothing to share, and the passes skip their timers.
   const int threads = omp_get_max_threads();
   contact_split_.prepare(threads);
   integrate_split_.prepare(threads);
   TimedSplit* const contact_split = threads > 1 ? &contact_split_ : nullptr;
   TimedSplit* const integrate_split = threads > 1 ? &integrate_split_ : nullptr;
-  const ForceSettings fs{
-      dt_, settings_.damping_ratio, friction_, all_spheres_, refresh_live, contact_split};
+  const ForceSettings fs{dt_,          settings_.damping_ratio, friction_,
+                         all_spheres_, kernel ? lanes : 0,      refresh_live && !kernel,
+                         contact_split};
   const IntegratorSettings is{dt_,
                               settings_.local_damping,
                               settings_.gravity,
                               settings_.max_speed,
                               settings_.rotation,
                               all_spheres_,
-                              refresh_live,
+                              refresh_live || make_flat,
                               integrate_split};
   IntegrationReport r;
   // One parallel region per step and one barrier inside it: the force pass

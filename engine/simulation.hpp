@@ -51,6 +51,10 @@ struct SimulationSettings {
   // "Far candidates"): the same bits, less work; false evaluates every candidate,
   // for the test that checks the skip changes nothing.
   bool skip_far_candidates = true;
+  // Lanes of the SIMD kernel that evaluates a sphere scene's ball–ball contacts when
+  // it has no dashpots (sphere_kernel.hpp): -1 the widest this CPU runs, 0 none (the
+  // scalar pass), 4 AVX2, 8 AVX-512. Every choice gives the same bits.
+  int simd_lanes = -1;
   std::ostream* log = nullptr;  // where the start-up report goes (nullptr: silent)
 };
 
@@ -123,6 +127,9 @@ class Simulation {
   double dt() const { return dt_; }
   double critical_dt() const { return estimate_.critical; }
   double skin() const { return skin_; }
+  // Lanes of the SIMD sphere kernel the last step used (sphere_kernel.hpp); 0: the
+  // scalar pass.
+  int sphere_kernel_lanes() const { return kernel_lanes_; }
   long neighbour_builds() const { return builds_; }
   const SimulationSettings& settings() const { return settings_; }
   const BodyStore& bodies() const { return bodies_; }
@@ -185,6 +192,7 @@ class Simulation {
   long steps_ = 0, builds_ = 0;
   bool prepared_ = false, friction_ = false, needs_rebuild_ = false, pairs_stale_ = true;
   bool all_spheres_ = false;  // ForceSettings::all_spheres, from refresh_all_spheres()
+  int kernel_lanes_ = 0;      // ForceSettings::sphere_kernel_lanes of the last step
 };
 
 }  // namespace ballast

@@ -10,6 +10,7 @@
 
 #include "cases/bench_bed.hpp"
 #include "cases/packing_bodies.hpp"
+#include "engine/sphere_kernel.hpp"
 #include "engine/state_hash.hpp"
 
 namespace ballast {
@@ -69,6 +70,7 @@ void run(BenchBedArgs& a) {
                               {"ball_ball_candidates", sim.ball_contacts().size()},
                               {"ball_wall_candidates", sim.wall_contacts().size()},
                               {"skip_far_candidates", a.bed.skip_far_candidates},
+                              {"sphere_kernel", sphere_kernel_name(sim.sphere_kernel_lanes())},
                               {"rotation", a.rotation},
                               {"seconds", seconds},
                               {"ball_steps_per_s", rate},
@@ -121,6 +123,10 @@ void register_bench_bed_command(CLI::App& app) {
   cmd->add_flag("!--test-all-candidates", a->bed.skip_far_candidates,
                 "evaluate every neighbour candidate each step, also those that cannot touch "
                 "(the same bits; measures what skipping them saves)");
+  cmd->add_option("--simd-lanes", a->bed.simd_lanes,
+                  "SIMD lanes of a sphere bed's contact kernel: -1 the widest this CPU runs, 0 "
+                  "none (one contact at a time), 4 AVX2, 8 AVX-512; the same bits")
+      ->check(CLI::IsMember({-1, 0, 4, 8}));
   cmd->add_option("--export-packing", a->export_packing,
                   "write the bed after the last step as a packing file");
   cmd->callback([a] { run(*a); });

@@ -1,0 +1,75 @@
+// The ball–ball contacts of a sphere-only scene, evaluated several at a time in the
+// lanes of SIMD registers (AVX2: 4 contacts, AVX-512: 8).
+//
+// Why: the scalar force pass spends most of its time waiting along each contact's
+// chain of dependent operations (partner load, distance, square root, division,
+// normal, shear turn, Coulomb cap); the out-of-order window overlaps too few
+// contacts to hide it (docs/PERFORMANCE.md, "What bought what"). Lanes evaluate
+// independent contacts side by side, so one chain's latency serves four or eight.
+//
+// The lanes take the live candidates a register's width at a time from one flat
+// sequence (ContactList::flat_c, remade only when the live lists are), with no loop
+// per ball: a loop that ends after a variable count at every ball mispredicts about
+// once a ball, which is what the pass is short of.
+//
+// Same bits as the scalar pass (forces.cpp): every lane performs the scalar law's
+// IEEE operations in the scalar order (no FMA: the kernel files are built without
+// it and with -ffp-contract=off), the law's two branches become selects computed
+// only when a lane needs them, and each ball's side-a wrench is summed from zero in
+// contact order, as the scalar pass does. tests/test_sphere_kernel.cpp holds every
+// width to the scalar pass's state hash.
+//
+// This header is plain C++ on purpose (no Eigen, no std::vector): the kernels are
+// compiled with -mavx2 / -mavx512f, and an inline function from a shared header
+// compiled there could be picked by the linker for the baseline code too.
+#pragma once
+
+#include <cstdint>
+
+namespace ballast {
+
+// Raw views of the arrays the kernel reads and writes.
+// Ball k is body k. Vectors are three doubles (x, y, z), wrenches six (force, then
+// torque); indices are the engine's 32-bit Index.
+struct SphereKernelView {
+  const double* position;          // m, per ball
+  const double* radius;            // m, per ball
+  const double* velocity;          // m/s, per ball (half step)
+  const double* angular_velocity;  // rad/s, per ball (half step)
+  const std::int32_t* material;    // per ball
+  const double* pair;              // kn, ks (N/m), mu per material pair (PairProperties)
+  std::int32_t materials;          // ball materials; pair[(mi·materials + mj)·3 ...]
+  double dt;                       // s
+  // the ball–ball candidate list (contact_list.hpp) and its flat live sequence
+  const std::int32_t* b;
+  const std::int32_t* flat_c;
+  const std::int32_t* flat_a;
+  const std::int32_t* flat_first;
+  double* shear_force;   // N, 3 per contact; null in a frictionless scene
+  double* b_wrench;      // 6 per contact
+  double* normal_force;  // N, per contact
+  double* slip_total;    // J, per contact
+  std::uint8_t* active;  // per contact
+  double* a_side;        // 6 per ball: set here to the sum of its side-a ball–ball wrenches
+};
+
+// Whether this CPU runs the kernel of `lanes` lanes (4: AVX2, 8: AVX-512F/DQ).
+bool sphere_kernel_supported(int lanes);
+// The widest kernel this CPU runs, 0 if none; the environment variable BALLAST_SIMD
+// (off, avx2, avx512) narrows it, to compare kernels on one machine.
+int sphere_kernel_best_lanes();
+// "avx512", "avx2" or "scalar" for 8, 4 or 0 lanes.
+const char* sphere_kernel_name(int lanes);
+
+// Evaluates the live ball–ball candidates of balls [lo, hi) (ContactList::flat_c...)
+// with the kernel of `lanes` lanes, which must be supported, and sets a_side of those
+// balls to the sum of their side-a wrenches (from zero, in contact order). The scene
+// has no contact dashpots.
+void sphere_kernel_ball_ball(const SphereKernelView& v, std::int32_t lo, std::int32_t hi,
+                             int lanes);
+
+// The kernels, one per instruction set (sphere_kernel_avx2.cpp, sphere_kernel_avx512.cpp).
+void sphere_kernel_ball_ball_avx2(const SphereKernelView& v, std::int32_t lo, std::int32_t hi);
+void sphere_kernel_ball_ball_avx512(const SphereKernelView& v, std::int32_t lo, std::int32_t hi);
+
+}  // namespace ballast

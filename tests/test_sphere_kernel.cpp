@@ -1,0 +1,131 @@
+// The SIMD sphere kernel (engine/sphere_kernel.hpp) evaluates four or eight contacts
+// at a time with the scalar contact law's operations in the scalar order, so a run
+// must end in the very state the scalar pass reaches: one state hash for every
+// kernel width this CPU runs. The scenes make the kernel go through all of its
+// paths: contacts that open and close, slide (the Coulomb cap) and roll (the shear
+// force turned into the new contact plane), walls, neighbour rebuilds, remade live
+// lists, one or two ball materials, with or without friction.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "cases/bed.hpp"
+#include "cases/box_test.hpp"
+#include "cases/sphere_packing.hpp"
+#include "engine/errors.hpp"
+#include "engine/sphere_kernel.hpp"
+#include "engine/state_hash.hpp"
+
+using namespace ballast;
+
+namespace {
+
+// The kernel widths this CPU runs, after the scalar pass (0).
+std::vector<int> widths() {
+  std::vector<int> w{0};
+  for (int lanes : {4, 8})
+    if (sphere_kernel_supported(lanes)) w.push_back(lanes);
+  return w;
+}
+
+struct Outcome {
+  std::uint64_t hash;
+  int lanes_used;
+  long contacts, builds;
+  double slip;  // J, friction dissipated: the Coulomb cap was reached
+};
+
+Outcome finish(Simulation& sim, double until) {
+  while (sim.time() < until) sim.step();
+  return {state_hash(sim.bodies(), sim.ball_contacts(), sim.wall_contacts()),
+          sim.sphere_kernel_lanes(), sim.contacts().ball_contacts, sim.neighbour_builds(),
+          sim.energy().friction_dissipated};
+}
+
+// A cloud of 400 spheres landing at 100 g in a narrow box: a bed within 0.05 s.
+Outcome landing_bed(int lanes, double friction) {
+  BedOptions o;
+  o.simd_lanes = lanes;
+  o.count = 400;
+  o.length = 0.35;
+  o.friction = friction;
+  o.damping_ratio = 0.0;  // the kernel's scenes: no dashpots
+  o.local_damping = 0.2;
+  o.gravity = Vec3(0, 0, -981.0);
+  Simulation sim = make_bed(o);
+  return finish(sim, 0.05);
+}
+
+// The same kind of cloud with every other sphere of a second material: softer and
+// rougher, so that each contact's pair properties come from the table.
+Outcome two_material_bed(int lanes) {
+  SimulationSettings s;
+  const Vec3 lo = Vec3::Zero(), hi(0.3, 0.15, 1.0);
+  const double r = 0.5 * box_test::kSphereDiameter;
+  s.domain_lo = lo - Vec3::Constant(2 * r);
+  s.domain_hi = hi + Vec3::Constant(2 * r);
+  s.gravity = Vec3(0, 0, -981.0);
+  s.local_damping = 0.2;
+  s.simd_lanes = lanes;
+  Simulation sim(s);
+  const Material hard{1e8, 1e8, 0.3}, soft{4e7, 2e7, 0.6};
+  const Index m0 = sim.add_material(hard), m1 = sim.add_material(soft);
+  for (const Wall& w : box_container(lo, hi, hard, soft, /*open_top=*/true)) sim.add_wall(w);
+  const std::vector<Vec3> centres = random_loose_packing(200, r, lo, hi, 0.3, 7);
+  for (std::size_t k = 0; k < centres.size(); ++k)
+    sim.add_sphere(centres[k], r, box_test::kDensity, k % 2 == 0 ? m0 : m1);
+  return finish(sim, 0.04);
+}
+
+}  // namespace
+
+TEST(SphereKernel, EveryWidthGivesTheScalarBits) {
+  const std::vector<int> w = widths();
+  if (w.size() == 1) GTEST_SKIP() << "this CPU has neither AVX2 nor AVX-512";
+  const Outcome scalar = landing_bed(0, 0.4);
+  EXPECT_EQ(scalar.lanes_used, 0);
+  EXPECT_GT(scalar.contacts, 300);  // the bed has formed
+  EXPECT_GT(scalar.builds, 10);     // across many neighbour rebuilds
+  EXPECT_GT(scalar.slip, 0.0);      // contacts slid
+  for (std::size_t k = 1; k < w.size(); ++k) {
+    const Outcome simd = landing_bed(w[k], 0.4);
+    EXPECT_EQ(simd.lanes_used, w[k]);
+    EXPECT_EQ(simd.hash, scalar.hash) << w[k] << " lanes";
+  }
+}
+
+TEST(SphereKernel, FrictionlessSceneGivesTheScalarBits) {
+  const std::vector<int> w = widths();
+  if (w.size() == 1) GTEST_SKIP() << "this CPU has neither AVX2 nor AVX-512";
+  const Outcome scalar = landing_bed(0, 0.0);
+  EXPECT_GT(scalar.contacts, 300);
+  EXPECT_EQ(scalar.slip, 0.0);
+  for (std::size_t k = 1; k < w.size(); ++k)
+    EXPECT_EQ(landing_bed(w[k], 0.0).hash, scalar.hash) << w[k] << " lanes";
+}
+
+TEST(SphereKernel, TwoMaterialsGiveTheScalarBits) {
+  const std::vector<int> w = widths();
+  if (w.size() == 1) GTEST_SKIP() << "this CPU has neither AVX2 nor AVX-512";
+  const Outcome scalar = two_material_bed(0);
+  EXPECT_GT(scalar.contacts, 150);
+  EXPECT_GT(scalar.slip, 0.0);
+  for (std::size_t k = 1; k < w.size(); ++k)
+    EXPECT_EQ(two_material_bed(w[k]).hash, scalar.hash) << w[k] << " lanes";
+}
+
+// A kernel the CPU does not run is refused at set-up, naming the field.
+TEST(SphereKernel, UnsupportedWidthIsRefused) {
+  for (int lanes : {3, 16}) {
+    BedOptions o;
+    o.count = 10;
+    o.simd_lanes = lanes;
+    Simulation sim = make_bed(o);
+    try {
+      sim.step();
+      FAIL() << lanes << " lanes accepted";
+    } catch (const SetupError& e) {
+      EXPECT_NE(std::string(e.what()).find("simd_lanes"), std::string::npos) << e.what();
+    }
+  }
+}
