@@ -86,8 +86,16 @@ inline void gather_body_force(Index body, ContactList& bc, const std::vector<Wre
   const Index none = bc.size();  // ContactList::b_wrench's zero slot
   for (Index e = bc.b_first[first]; e < bc.live_b_end[first]; ++e) {
     const Index c = live_b[e];
-    const Index open = Index(active[c]) - 1;                // 0 if touching, all bits set if open
-    const Wrench& w = wrench[(c & ~open) | (none & open)];  // a mask: GCC branched on ?:
+    // A sphere scene's live contacts are mostly touching (the bench bed: 3,524 of
+    // about 4,300), so there the zero slot saves little traffic and its `active`
+    // load lengthened each entry's chain of dependent loads: it reads the contact's
+    // own slot, which holds the same zero when the contact is open.
+    Index slot = c;
+    if constexpr (!kSpheres) {
+      const Index open = Index(active[c]) - 1;  // 0 if touching, all bits set if open
+      slot = (c & ~open) | (none & open);       // a mask: GCC branched on ?:
+    }
+    const Wrench& w = wrench[slot];
     f += load(w.force);
     m += load(w.torque);
   }
