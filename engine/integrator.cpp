@@ -7,6 +7,7 @@
 #include <omp.h>
 
 #include "engine/forces.hpp"
+#include "engine/sphere_kernel.hpp"
 #include "engine/v3.hpp"
 #include "engine/work_split.hpp"
 
@@ -29,17 +30,18 @@ struct ThreadReport {
   Index bad = std::numeric_limits<Index>::max();
 };
 
-// One body, one step. kDamped: local damping on (α > 0), a template argument so
-// that undamped scenes carry no test for it per body. kSpheres: a scene of spheres
-// only (IntegratorSettings::all_spheres), where body b is ball b and the clump path
-// is not compiled in.
+// One body, one step, once gather_body_force has stored its resultant force and
+// torque. kDamped: local damping on (α > 0), a template argument so that undamped
+// scenes carry no test for it per body. kSpheres: a scene of spheres only
+// (IntegratorSettings::all_spheres), where body b is ball b and the clump path is
+// not compiled in. The sphere kernel (sphere_kernel.hpp) does the same operations
+// for several spheres at once.
 template <bool kDamped, bool kSpheres>
-[[gnu::always_inline]] inline void step_body(const IntegratorSettings& s, ContactList& bc,
-                                             const std::vector<Wrench>& a_side,
-                                             const std::vector<Vec3>& reference, BodyStore& bodies,
-                                             BallStore& balls, Index b, ThreadReport& out) {
+[[gnu::always_inline]] inline void update_body(const IntegratorSettings& s,
+                                               const std::vector<Vec3>& reference,
+                                               BodyStore& bodies, BallStore& balls, Index b,
+                                               ThreadReport& out) {
   const double dt = s.dt, alpha = s.local_damping;
-  gather_body_force<kSpheres>(b, bc, a_side, s.gravity, bodies, s.refresh_live);
   const double m = bodies.mass[b];
   const V3 f_raw = load(bodies.force[b]), m_raw = load(bodies.torque[b]);
   const V3 v_old = load(bodies.velocity[b]), w_old = load(bodies.angular_velocity[b]);
@@ -108,8 +110,48 @@ void step_bodies(const IntegratorSettings& s, ContactList& bc, const std::vector
   // smoke-scale Sample 2 run put 9 % of the integrator's samples on that store).
   // Same bits; no speed difference this host's noise can resolve.
   ThreadReport mine = out;
+  for (Index b = lo; b < hi; ++b) {
+    gather_body_force<kSpheres>(b, bc, a_side, s.gravity, bodies, s.refresh_live);
+    update_body<kDamped, kSpheres>(s, reference, bodies, balls, b, mine);
+  }
+  out = mine;
+}
+
+// A sphere scene with a SIMD kernel: each sphere's gather, then the leapfrog of the
+// share's spheres several at a time (sphere_kernel.hpp), the last few one by one.
+template <bool kDamped>
+void step_spheres_in_lanes(const IntegratorSettings& s, ContactList& bc,
+                           const std::vector<Wrench>& a_side, const std::vector<Vec3>& reference,
+                           BodyStore& bodies, BallStore& balls, Index lo, Index hi,
+                           ThreadReport& out) {
   for (Index b = lo; b < hi; ++b)
-    step_body<kDamped, kSpheres>(s, bc, a_side, reference, bodies, balls, b, mine);
+    gather_body_force<true>(b, bc, a_side, s.gravity, bodies, s.refresh_live);
+  static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Index) == sizeof(std::int32_t));
+  SphereUpdateView u;
+  u.force = bodies.force.data()->data();
+  u.torque = bodies.torque.data()->data();
+  u.velocity = bodies.velocity.data()->data();
+  u.angular_velocity = bodies.angular_velocity.data()->data();
+  u.position = bodies.position.data()->data();
+  u.ball_position = balls.position.data()->data();
+  u.rotation = bodies.rotation.data()->data();
+  u.reference = reference.data()->data();
+  u.mass = bodies.mass.data();
+  u.inv_mass = bodies.inv_mass.data();
+  u.inv_inertia = bodies.inv_inertia.data()->data();
+  u.gravity_work = bodies.gravity_work.data();
+  u.damping_dissipated = bodies.damping_dissipated.data();
+  u.dt = s.dt;
+  u.local_damping = s.local_damping;
+  for (int k = 0; k < 3; ++k) u.gravity[k] = s.gravity[k];
+  u.max_speed = s.max_speed;
+  SphereUpdateReport r;
+  r.shift2 = out.shift2;
+  r.bad = out.bad;
+  const Index done = sphere_kernel_update(u, lo, hi, s.sphere_kernel_lanes, r);
+  ThreadReport mine{r.shift2, r.bad};
+  for (Index b = done; b < hi; ++b)
+    update_body<kDamped, true>(s, reference, bodies, balls, b, mine);
   out = mine;
 }
 
@@ -129,7 +171,11 @@ void integrate(const IntegratorSettings& s, ContactList& ball_contacts,
         return long(first) + ball_contacts.b_first[first] + 4L * b;
       },
       s.split);
-  if (s.local_damping > 0.0 && s.all_spheres)
+  if (s.all_spheres && s.sphere_kernel_lanes > 0 && s.local_damping > 0.0)
+    step_spheres_in_lanes<true>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
+  else if (s.all_spheres && s.sphere_kernel_lanes > 0)
+    step_spheres_in_lanes<false>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
+  else if (s.local_damping > 0.0 && s.all_spheres)
     step_bodies<true, true>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
   else if (s.local_damping > 0.0)
     step_bodies<true, false>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);

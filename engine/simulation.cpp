@@ -497,6 +497,7 @@ void Simulation::step() {
                               settings_.max_speed,
                               settings_.rotation,
                               all_spheres_,
+                              all_spheres_ ? lanes : 0,
                               refresh_live || make_flat,
                               integrate_split};
   IntegrationReport r;

@@ -36,4 +36,10 @@ void sphere_kernel_ball_ball(const SphereKernelView& v, std::int32_t lo, std::in
     sphere_kernel_ball_ball_avx2(v, lo, hi);
 }
 
+std::int32_t sphere_kernel_update(const SphereUpdateView& v, std::int32_t lo, std::int32_t hi,
+                                  int lanes, SphereUpdateReport& report) {
+  return lanes == 8 ? sphere_kernel_update_avx512(v, lo, hi, report)
+                    : sphere_kernel_update_avx2(v, lo, hi, report);
+}
+
 }  // namespace ballast

@@ -53,6 +53,36 @@ struct SphereKernelView {
   double* a_side;        // 6 per ball: set here to the sum of its side-a ball–ball wrenches
 };
 
+// The leapfrog of consecutive spheres (integrator.cpp's update_body, after the
+// gather has stored each body's resultant), several bodies per pass. Ball k is body
+// k; vectors are three doubles per body.
+struct SphereUpdateView {
+  const double* force;         // N, the resultant before damping (gather_body_force)
+  const double* torque;        // N·m
+  double* velocity;            // m/s, half step
+  double* angular_velocity;    // rad/s, half step
+  double* position;            // m, the body's centre
+  double* ball_position;       // m, its ball's centre (the same point)
+  double* rotation;            // rad, Σ ω·dt
+  const double* reference;     // m, ball positions at the last neighbour build
+  const double* mass;          // kg
+  const double* inv_mass;      // 1/kg
+  const double* inv_inertia;   // 1/(kg·m²), principal (equal for a sphere)
+  double* gravity_work;        // J
+  double* damping_dissipated;  // J
+  double dt;                   // s
+  double local_damping;        // PFC α (0: off)
+  double gravity[3];           // m/s²
+  double max_speed;            // m/s
+};
+
+// What the update saw: the largest squared move since the reference (m²) and the
+// lowest body that went non-finite or too fast (INT32_MAX if none).
+struct SphereUpdateReport {
+  double shift2 = 0.0;
+  std::int32_t bad = INT32_MAX;
+};
+
 // Whether this CPU runs the kernel of `lanes` lanes (4: AVX2, 8: AVX-512F/DQ).
 bool sphere_kernel_supported(int lanes);
 // The widest kernel this CPU runs, 0 if none; the environment variable BALLAST_SIMD
@@ -68,8 +98,17 @@ const char* sphere_kernel_name(int lanes);
 void sphere_kernel_ball_ball(const SphereKernelView& v, std::int32_t lo, std::int32_t hi,
                              int lanes);
 
+// Updates bodies [lo, lo + n·lanes) for the largest such n with lo + n·lanes <= hi,
+// folding into `report`, and returns lo + n·lanes: the caller updates the rest.
+std::int32_t sphere_kernel_update(const SphereUpdateView& v, std::int32_t lo, std::int32_t hi,
+                                  int lanes, SphereUpdateReport& report);
+
 // The kernels, one per instruction set (sphere_kernel_avx2.cpp, sphere_kernel_avx512.cpp).
 void sphere_kernel_ball_ball_avx2(const SphereKernelView& v, std::int32_t lo, std::int32_t hi);
 void sphere_kernel_ball_ball_avx512(const SphereKernelView& v, std::int32_t lo, std::int32_t hi);
+std::int32_t sphere_kernel_update_avx2(const SphereUpdateView& v, std::int32_t lo, std::int32_t hi,
+                                       SphereUpdateReport& report);
+std::int32_t sphere_kernel_update_avx512(const SphereUpdateView& v, std::int32_t lo,
+                                         std::int32_t hi, SphereUpdateReport& report);
 
 }  // namespace ballast

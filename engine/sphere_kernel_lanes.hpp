@@ -1,49 +1,15 @@
-// The sphere kernel's lane-generic body (sphere_kernel.hpp), included by one file
-// per instruction set after it defines, in an anonymous namespace: kLanes, vd (kLanes
-// doubles), vm (the matching lane mask), splat, vsqrt, any, lane_bits and lanes.
-// Everything here has internal linkage, so each file keeps its own instructions.
+// The sphere kernel's contact body (sphere_kernel.hpp), lane-generic: included by
+// one file per instruction set (sphere_lane_ops.hpp lists what that file defines).
 #pragma once
 
 #include <bit>
 #include <cstdint>
 
 #include "engine/sphere_kernel.hpp"
+#include "engine/sphere_lane_ops.hpp"
 
 namespace ballast {
 namespace {
-
-// A three-vector per lane, with the scalar law's operations in the scalar order
-// (v3.hpp): dot is (x·x + y·y) + z·z, cross is written out the same way.
-struct L3 {
-  vd x, y, z;
-};
-[[gnu::always_inline]] inline L3 load3(const double* p, const std::int32_t* index) {
-  return {lanes(p, index, 3, 0), lanes(p, index, 3, 1), lanes(p, index, 3, 2)};
-}
-[[gnu::always_inline]] inline L3 operator+(const L3& a, const L3& b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-[[gnu::always_inline]] inline L3 operator-(const L3& a, const L3& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-[[gnu::always_inline]] inline L3 operator-(const L3& a) {
-  return {-a.x, -a.y, -a.z};
-}
-[[gnu::always_inline]] inline L3 operator*(vd s, const L3& a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-[[gnu::always_inline]] inline vd dot(const L3& a, const L3& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-[[gnu::always_inline]] inline L3 cross(const L3& a, const L3& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-[[gnu::always_inline]] inline vd select(vm m, vd a, vd b) {
-  return m ? a : b;
-}
-[[gnu::always_inline]] inline L3 select(vm m, const L3& a, const L3& b) {
-  return {m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z};
-}
 
 // What a batch hands back per lane, as rows of kLanes doubles: the scalar stores
 // that follow read them lane by lane.
@@ -211,7 +177,7 @@ void ball_ball(const SphereKernelView& view, std::int32_t lo, std::int32_t hi) {
   }
 }
 
-// The kernel for this instruction set: friction and a one-material scene are
+// The contact kernel for this instruction set: friction and a one-material scene are
 // template arguments, so that neither costs a test per contact.
 void ball_ball_contacts(const SphereKernelView& v, std::int32_t lo, std::int32_t hi) {
   const bool one = v.materials == 1;

@@ -71,7 +71,7 @@ Outcome two_material_bed(int lanes) {
   const Material hard{1e8, 1e8, 0.3}, soft{4e7, 2e7, 0.6};
   const Index m0 = sim.add_material(hard), m1 = sim.add_material(soft);
   for (const Wall& w : box_container(lo, hi, hard, soft, /*open_top=*/true)) sim.add_wall(w);
-  const std::vector<Vec3> centres = random_loose_packing(200, r, lo, hi, 0.3, 7);
+  const std::vector<Vec3> centres = random_loose_packing(203, r, lo, hi, 0.3, 7);
   for (std::size_t k = 0; k < centres.size(); ++k)
     sim.add_sphere(centres[k], r, box_test::kDensity, k % 2 == 0 ? m0 : m1);
   return finish(sim, 0.04);
