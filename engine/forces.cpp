@@ -279,7 +279,6 @@ void contact_pass(const BallStore& ball_store, const BodyStore& body_store, cons
   // has 19 candidates per touching contact, spread evenly, while its touching
   // contacts crowd the base: counted by candidates, one thread waited at the barrier.
   const Index* const touching_first = bc_list.touching_first.data();
-  const double start = s.split != nullptr ? omp_get_wtime() : 0.0;
   const auto [lo, hi] = balanced_range(
       n_bodies,
       [&](Index b) {
@@ -293,7 +292,6 @@ void contact_pass(const BallStore& ball_store, const BodyStore& body_store, cons
     if (s.sphere_kernel_lanes > 0) {
       sphere_pass_simd<kFriction>(ball_store, body_store, pairs, walls, s, bc_list, wc_list,
                                   a_side_store, lo, hi);
-      if (s.split != nullptr) s.split->record(omp_get_thread_num(), omp_get_wtime() - start);
       return;
     }
   }
@@ -319,7 +317,6 @@ void contact_pass(const BallStore& ball_store, const BodyStore& body_store, cons
     store(a_side[body].force, f);
     store(a_side[body].torque, t);
   }
-  if (s.split != nullptr) s.split->record(omp_get_thread_num(), omp_get_wtime() - start);
 }
 
 template <bool kFriction, bool kDamped>

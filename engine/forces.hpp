@@ -40,7 +40,7 @@ struct ForceSettings {
   // side-a lists before using them.
   bool refresh_live = false;
   // Thread shares that follow measured time (timed_split.hpp); null: the cost model's
-  // equal shares. Each thread records its time in it; the caller updates it after.
+  // equal shares. The caller times each thread's pass, records and updates it.
   TimedSplit* split = nullptr;
 };
 

@@ -161,7 +161,6 @@ void integrate(const IntegratorSettings& s, ContactList& ball_contacts,
                const std::vector<Wrench>& a_side, const std::vector<Vec3>& reference,
                BodyStore& bodies, BallStore& balls, IntegrationReport& report) {
   ThreadReport mine;
-  const double start = s.split != nullptr ? omp_get_wtime() : 0.0;
   // Shares of bodies by work (work_split.hpp): a body costs its integration, its
   // balls and the side-b contacts it gathers.
   const auto [lo, hi] = balanced_range(
@@ -183,8 +182,6 @@ void integrate(const IntegratorSettings& s, ContactList& ball_contacts,
     step_bodies<false, true>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
   else
     step_bodies<false, false>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
-
-  if (s.split != nullptr) s.split->record(omp_get_thread_num(), omp_get_wtime() - start);
 
 #pragma omp critical(ballast_integrate_report)
   {

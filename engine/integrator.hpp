@@ -34,6 +34,7 @@ struct IntegratorSettings {
   // side-b list before gathering it (ForceSettings::refresh_live).
   bool refresh_live = false;
   // Thread shares that follow measured time (timed_split.hpp); null: equal shares.
+  // The caller times each thread's pass, records and updates it.
   TimedSplit* split = nullptr;
 };
 

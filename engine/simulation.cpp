@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <ostream>
 #include <sstream>
@@ -456,6 +457,15 @@ void Simulation::drive_walls() {
   }
 }
 
+double Simulation::move_walls() {
+  sum_wall_forces();
+  drive_walls();
+  double shift2 = 0.0;
+  for (Index w = 0; w < static_cast<Index>(walls_.size()); ++w)
+    shift2 = std::max(shift2, (walls_[w].displacement - wall_reference_[w]).squaredNorm());
+  return shift2;
+}
+
 void Simulation::step() {
   if (!prepared_) prepare();
   if (needs_rebuild_) rebuild_neighbours();
@@ -503,15 +513,33 @@ void Simulation::step() {
   IntegrationReport r;
   // One parallel region per step and one barrier inside it: the force pass
   // (forces.hpp), then per body gather + integrate (integrator.hpp); the region's end
-  // is the second.
+  // is the second. After the barrier the main thread first sums the wall forces and
+  // moves the walls (nothing the integration reads), inside its timed share, so the
+  // split hands it fewer bodies instead of leaving the others waiting for it after
+  // the region (1.6 µs a step on the sphere bench bed, about 2 % on two threads).
+  double wall_shift2 = 0.0;
+  std::exception_ptr wall_error;
 #pragma omp parallel
   {
+    const int me = omp_get_thread_num();
+    double start = contact_split != nullptr ? omp_get_wtime() : 0.0;
     compute_contacts(balls_, bodies_, pairs_, walls_, fs, ball_contacts_, wall_contacts_, a_side_);
+    if (contact_split != nullptr) contact_split->record(me, omp_get_wtime() - start);
 #pragma omp barrier
+    start = integrate_split != nullptr ? omp_get_wtime() : 0.0;
+    if (me == 0 && has_walls) {
+      try {  // an exception must not leave the region
+        wall_shift2 = move_walls();
+      } catch (...) {
+        wall_error = std::current_exception();
+      }
+    }
     integrate(is, ball_contacts_, a_side_, reference_positions_, bodies_, balls_, r);
+    if (integrate_split != nullptr) integrate_split->record(me, omp_get_wtime() - start);
   }
   contact_split_.update();
   integrate_split_.update();
+  if (wall_error) std::rethrow_exception(wall_error);
   finish_report(bodies_, r);
   if (r.bad_body != kNoIndex) {
     std::ostringstream m;
@@ -524,15 +552,6 @@ void Simulation::step() {
     }
     m << " (dt = " << dt_ << " s, critical estimate " << estimate_.critical << " s)";
     throw SimulationError(steps_, r.bad_body, r.bad_is_nan ? "velocity" : "speed", m.str());
-  }
-
-  double wall_shift2 = 0.0;
-  if (has_walls) {
-    sum_wall_forces();
-    drive_walls();
-    for (Index w = 0; w < static_cast<Index>(walls_.size()); ++w)
-      wall_shift2 =
-          std::max(wall_shift2, (walls_[w].displacement - wall_reference_[w]).squaredNorm());
   }
   shift_since_build_ = std::sqrt(r.max_ball_shift2);
   time_ += dt_;

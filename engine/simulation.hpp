@@ -160,6 +160,8 @@ class Simulation {
   float live_cover_above(float bound) const;
   void sum_wall_forces();
   void drive_walls();
+  // Both, then the largest squared wall move since the last build (m²).
+  double move_walls();
   bool scene_has_friction() const;
   void refresh_friction_state();
 

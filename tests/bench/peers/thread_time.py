@@ -31,9 +31,12 @@ def phase(symbol, dso):
     """The part of the step a sample belongs to."""
     if "libgomp" in dso:
         return "OpenMP wait"
-    if "contact_pass" in symbol or "compute_contacts" in symbol:
+    # The sphere kernels (engine/sphere_kernel.hpp): ball_ball and sphere_pass_simd are
+    # the force pass, update_spheres the leapfrog.
+    if any(k in symbol for k in ("contact_pass", "compute_contacts", "ball_ball", "sphere_pass")):
         return "force pass"
-    if "integrate" in symbol or "step_bod" in symbol or "gather_body_force" in symbol:
+    if any(k in symbol for k in ("integrate", "step_bod", "step_spheres", "gather_body_force",
+                                 "update_spheres")):
         return "integrator"
     return "serial and other"
 
