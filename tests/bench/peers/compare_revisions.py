@@ -3,15 +3,19 @@
 (docs/PERFORMANCE.md, "What bought what").
 
     tests/bench/peers/compare_revisions.py 69f8a8c 0f66e10 HEAD
+    tests/bench/peers/compare_revisions.py "HEAD:--simd-lanes 0" HEAD --beds-only spheres
 
-Each revision is checked out once as a detached worktree under build/revisions/REV and
+A revision may carry bench-bed flags after a colon ("REV:FLAGS"): one build, run
+with and without them, says what a switch buys. Each revision is checked out once as a detached worktree under build/revisions/REV and
 its `ballast` binary built there (Release, as the top-level Makefile builds it). Then,
 for every bed of build/peers (the benchmark's cached packing files: run `make
 bench-peers` once to make them) and for 1 and 2 threads, every revision runs
 `ballast bench-bed` with the benchmark's physics, in rounds with the order turned by
 one each round so that drift on the host falls on every revision. Printed: the median
 ball-steps/s per revision, its ratio to the first revision, its 2/1-thread speed-up and
-its state hash after the run (equal hashes: the revisions compute the same numbers).
+its state hash after the run (equal hashes: the revisions compute the same numbers);
+then the median over rounds of each round's ratio to the first revision, which a
+host whose speed drifts over minutes leaves alone better than a ratio of medians.
 """
 import argparse
 import os
@@ -31,8 +35,10 @@ def git(*args):
                           text=True).stdout.strip()
 
 
-def build_revision(rev, work):
-    """The ballast binary of `rev`, built in its own worktree; returns (short id, path)."""
+def build_revision(spec, work):
+    """The ballast binary of `spec` ("REV" or "REV:FLAGS"), built in its own worktree;
+    returns (label, path, flags)."""
+    rev, _, flags = spec.partition(":")
     short = git("rev-parse", "--short", rev)
     tree = os.path.join(work, short)
     binary = os.path.join(tree, "build", "study", "ballast")
@@ -44,7 +50,7 @@ def build_revision(rev, work):
                         "-DCMAKE_BUILD_TYPE=Release"], check=True, capture_output=True)
         subprocess.run(["cmake", "--build", os.path.join(tree, "build"), "-j2", "--target",
                         "ballast"], check=True, capture_output=True)
-    return short, binary
+    return (f"{short} {flags}" if flags else short), binary, flags.split()
 
 
 def main():
@@ -56,21 +62,23 @@ def main():
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--steps-spheres", type=int, default=10000)
     ap.add_argument("--steps-sample1", type=int, default=1000)
+    ap.add_argument("--beds-only", choices=("spheres", "sample1"),
+                    help="one bed instead of both")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     builds = [build_revision(r, a.work) for r in a.revisions]
-    for bed in ("spheres", "sample1"):
+    for bed in (a.beds_only,) if a.beds_only else ("spheres", "sample1"):
         path = os.path.join(a.beds, f"{bed}.txt")
         if not os.path.exists(path):
             sys.exit(f"compare_revisions: no bed {path}: run `make bench-peers` once to build it")
         p = Physics(steps=getattr(a, f"steps_{bed}"))
-        rate = {(s, n): [] for s, _ in builds for n in (1, 2)}
-        hashes = {(s, n): set() for s, _ in builds for n in (1, 2)}
+        rate = {(s, n): [] for s, _, _ in builds for n in (1, 2)}
+        hashes = {(s, n): set() for s, _, _ in builds for n in (1, 2)}
         runs = [(b, n) for n in (1, 2) for b in builds]
         print(f"\n== {bed}: {p.steps} steps, {a.rounds} rounds ==", flush=True)
         for k in range(a.rounds):
-            for (short, binary), n in runs[k % len(runs):] + runs[:k % len(runs)]:
-                r = ballast_peer.run(binary, path, p, n)
+            for (short, binary, flags), n in runs[k % len(runs):] + runs[:k % len(runs)]:
+                r = ballast_peer.run(binary, path, p, n, extra=flags)
                 rate[(short, n)].append(r["ball_steps_per_s"])
                 hashes[(short, n)].add(r["state_hash"])
                 print(f"  round {k + 1}: {short} {n} threads: {r['ball_steps_per_s']:.3e}",
@@ -80,11 +88,22 @@ def main():
         print("| revision | 1 thread | 2 threads | 2 / 1 | / first, 1 | / first, 2 | state hash |")
         print("|---|---|---|---|---|---|---|")
         med = {key: statistics.median(v) for key, v in rate.items()}
-        for short, _ in builds:
+        for short, _, _ in builds:
             one, two = med[(short, 1)], med[(short, 2)]
             h = sorted(hashes[(short, 1)] | hashes[(short, 2)])
             print(f"| {short} | {one:.3g} | {two:.3g} | {two / one:.2f} | "
                   f"{one / med[(first, 1)]:.2f} | {two / med[(first, 2)]:.2f} | {', '.join(h)} |")
+        print(f"\n{bed}: median over rounds of each round's ratio to {first} (range)")
+        print("| revision | 1 thread | 2 threads | 2 / 1 in the round |")
+        print("|---|---|---|---|")
+        for short, _, _ in builds:
+            cells = []
+            for n in (1, 2):
+                q = [x / y for x, y in zip(rate[(short, n)], rate[(first, n)])]
+                cells.append(f"{statistics.median(q):.3f} ({min(q):.2f}–{max(q):.2f})")
+            q = [y / x for x, y in zip(rate[(short, 1)], rate[(short, 2)])]
+            cells.append(f"{statistics.median(q):.2f} ({min(q):.2f}–{max(q):.2f})")
+            print(f"| {short} | " + " | ".join(cells) + " |")
     return 0
 
 
