@@ -467,6 +467,25 @@ double Simulation::move_walls() {
 }
 
 void Simulation::step() {
+  const double step_start = phase_timing_ ? omp_get_wtime() : 0.0;
+  do_step();
+  if (phase_timing_) {
+    // The step outside the region: its whole time less what the threads' parts add up
+    // to on the main thread.
+    const PhaseTimes::Thread& main = phase_times_.thread[0];
+    const double region = main.fork + main.contacts + main.barrier + main.integrate + main.join;
+    phase_times_.serial += omp_get_wtime() - step_start - (region - phase_region_before_);
+    phase_region_before_ = region;
+  }
+}
+
+void Simulation::set_phase_timing(bool on) {
+  phase_timing_ = on;
+  phase_times_ = PhaseTimes{};
+  phase_region_before_ = 0.0;
+}
+
+void Simulation::do_step() {
   if (!prepared_) prepare();
   if (needs_rebuild_) rebuild_neighbours();
   if (pairs_stale_) {
@@ -519,14 +538,25 @@ void Simulation::step() {
   // the region (1.6 µs a step on the sphere bench bed, about 2 % on two threads).
   double wall_shift2 = 0.0;
   std::exception_ptr wall_error;
+  // Clock readings for the passes' shares (two threads or more) and for phase timing.
+  const bool timing = phase_timing_;
+  if (timing && phase_times_.thread.size() < std::size_t(threads))
+    phase_times_.thread.resize(threads);
+  if (timing) phase_end_.assign(threads, 0.0);
+  const double region_start = timing ? omp_get_wtime() : 0.0;
+  // The region runs on one thread too: a step of a study run is itself inside the
+  // study's team of jobs, and without a region of its own the passes would split
+  // their loops by that outer team.
 #pragma omp parallel
   {
     const int me = omp_get_thread_num();
-    double start = contact_split != nullptr ? omp_get_wtime() : 0.0;
+    const bool clock = timing || contact_split != nullptr;
+    const double t0 = clock ? omp_get_wtime() : 0.0;
     compute_contacts(balls_, bodies_, pairs_, walls_, fs, ball_contacts_, wall_contacts_, a_side_);
-    if (contact_split != nullptr) contact_split->record(me, omp_get_wtime() - start);
+    const double t1 = clock ? omp_get_wtime() : 0.0;
+    if (contact_split != nullptr) contact_split->record(me, t1 - t0);
 #pragma omp barrier
-    start = integrate_split != nullptr ? omp_get_wtime() : 0.0;
+    const double t2 = clock ? omp_get_wtime() : 0.0;
     if (me == 0 && has_walls) {
       try {  // an exception must not leave the region
         wall_shift2 = move_walls();
@@ -535,7 +565,21 @@ void Simulation::step() {
       }
     }
     integrate(is, ball_contacts_, a_side_, reference_positions_, bodies_, balls_, r);
-    if (integrate_split != nullptr) integrate_split->record(me, omp_get_wtime() - start);
+    const double t3 = clock ? omp_get_wtime() : 0.0;
+    if (integrate_split != nullptr) integrate_split->record(me, t3 - t2);
+    if (timing) {  // each thread its own entry
+      PhaseTimes::Thread& p = phase_times_.thread[me];
+      p.fork += t0 - region_start;
+      p.contacts += t1 - t0;
+      p.barrier += t2 - t1;
+      p.integrate += t3 - t2;
+      phase_end_[me] = t3;
+    }
+  }
+  if (timing) {
+    const double region_end = omp_get_wtime();
+    for (int t = 0; t < threads; ++t) phase_times_.thread[t].join += region_end - phase_end_[t];
+    ++phase_times_.steps;
   }
   contact_split_.update();
   integrate_split_.update();

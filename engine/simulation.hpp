@@ -22,6 +22,7 @@
 #include "engine/diagnostics.hpp"
 #include "engine/material.hpp"
 #include "engine/pair_table.hpp"
+#include "engine/phase_times.hpp"
 #include "engine/rigid_rotation.hpp"
 #include "engine/servo.hpp"
 #include "engine/timed_split.hpp"
@@ -130,6 +131,9 @@ class Simulation {
   // Lanes of the SIMD sphere kernel the last step used (sphere_kernel.hpp); 0: the
   // scalar pass.
   int sphere_kernel_lanes() const { return kernel_lanes_; }
+  // Per-thread phase timing of the steps from now on (phase_times.hpp); off by default.
+  void set_phase_timing(bool on);
+  const PhaseTimes& phase_times() const { return phase_times_; }
   long neighbour_builds() const { return builds_; }
   const SimulationSettings& settings() const { return settings_; }
   const BodyStore& bodies() const { return bodies_; }
@@ -152,6 +156,7 @@ class Simulation {
   void update_timestep();
   // all_spheres_ from the bodies and settings_.sphere_fast_path (prepare() and the setter).
   void refresh_all_spheres();
+  void do_step();  // step() without the phase clock around it
   // m: the most any radius has grown since the last build (radius expansion).
   double growth_since_build() const;
   float far_gap() const;
@@ -195,6 +200,10 @@ class Simulation {
   bool prepared_ = false, friction_ = false, needs_rebuild_ = false, pairs_stale_ = true;
   bool all_spheres_ = false;  // ForceSettings::all_spheres, from refresh_all_spheres()
   int kernel_lanes_ = 0;      // ForceSettings::sphere_kernel_lanes of the last step
+  bool phase_timing_ = false;
+  PhaseTimes phase_times_;
+  std::vector<double> phase_end_;     // s, each thread's end of the region, this step
+  double phase_region_before_ = 0.0;  // s, the main thread's region parts before this step
 };
 
 }  // namespace ballast

@@ -24,8 +24,22 @@ struct BenchBedArgs {
   bool json = false;
   std::string rotation = "full";
   std::string export_packing;
+  bool phase_times = false;
   BenchBedOptions bed;
 };
+
+// Per thread, µs per step in each phase of the step (engine/phase_times.hpp).
+nlohmann::json phase_json(const PhaseTimes& p) {
+  const double k = p.steps > 0 ? 1e6 / double(p.steps) : 0.0;
+  nlohmann::json threads = nlohmann::json::array();
+  for (const PhaseTimes::Thread& t : p.thread)
+    threads.push_back({{"fork_us", t.fork * k},
+                       {"contacts_us", t.contacts * k},
+                       {"barrier_us", t.barrier * k},
+                       {"walls_and_integrate_us", t.integrate * k},
+                       {"join_us", t.join * k}});
+  return {{"steps", p.steps}, {"serial_us", p.serial * k}, {"threads", threads}};
+}
 
 nlohmann::json means_json(const ContactForceMeans& m) {
   return {{"count", m.count},
@@ -40,6 +54,7 @@ void run(BenchBedArgs& a) {
   const Packing packing = read_packing_file(a.packing);
   Simulation sim = make_bench_bed(packing, a.bed);
   sim.prepare();  // neighbour search and timestep check: set-up, not timed
+  sim.set_phase_timing(a.phase_times);
   const auto start = std::chrono::steady_clock::now();
   sim.run(a.steps);
   const double seconds =
@@ -81,7 +96,9 @@ void run(BenchBedArgs& a) {
                               {"kinetic_translational_J", p.kinetic_translational},
                               {"kinetic_rotational_J", p.kinetic_rotational},
                               {"state_hash", hash}};
-    std::cout << j.dump(2) << "\n";
+    nlohmann::json out = j;
+    if (a.phase_times) out["phase_times"] = phase_json(sim.phase_times());
+    std::cout << out.dump(2) << "\n";
     return;
   }
   std::printf(
@@ -93,6 +110,17 @@ void run(BenchBedArgs& a) {
       "contacts: %ld ball-ball, %ld ball-wall; mean normal %.6g N, mean tangential %.6g "
       "N; kinetic energy %.6g J; state hash %s\n",
       p.ball_ball.count, p.ball_wall.count, p.all.normal, p.all.tangential, p.kinetic(), hash);
+  if (a.phase_times) {
+    const PhaseTimes& t = sim.phase_times();
+    const double k = t.steps > 0 ? 1e6 / double(t.steps) : 0.0;
+    std::printf("phase times, us per step: serial %.2f\n", t.serial * k);
+    for (std::size_t n = 0; n < t.thread.size(); ++n)
+      std::printf(
+          "  thread %zu: fork %.2f, contacts %.2f, barrier %.2f, walls and integrate %.2f, "
+          "join %.2f\n",
+          n, t.thread[n].fork * k, t.thread[n].contacts * k, t.thread[n].barrier * k,
+          t.thread[n].integrate * k, t.thread[n].join * k);
+  }
 }
 
 }  // namespace
@@ -127,6 +155,9 @@ void register_bench_bed_command(CLI::App& app) {
                   "SIMD lanes of a sphere bed's contact kernel: -1 the widest this CPU runs, 0 "
                   "none (one contact at a time), 4 AVX2, 8 AVX-512; the same bits")
       ->check(CLI::IsMember({-1, 0, 4, 8}));
+  cmd->add_flag("--phase-times", a->phase_times,
+                "report each thread's time per step in each phase of the step (fork, force "
+                "pass, barrier, walls and integration, join) and the serial part");
   cmd->add_option("--export-packing", a->export_packing,
                   "write the bed after the last step as a packing file");
   cmd->callback([a] { run(*a); });

@@ -217,6 +217,34 @@ class BenchBedCommand(unittest.TestCase):
         self.assertAlmostEqual(s["kinetic_energy_J"], 0.5 * m * v * v, delta=1e-9 * m * v * v)
         self.assertEqual(len(s["state_hash"]), 16)
 
+    def test_phase_times_add_up_to_the_time_of_the_steps(self):
+        # A row of 40 resting spheres stepped on two threads: each thread's phases
+        # (fork, force pass, barrier, walls and integration, join) and the serial part
+        # cover the step, so the main thread's sum plus the serial part is the time
+        # per step that the ball-steps/s figure implies (the loop around the steps
+        # adds nanoseconds).
+        r, rho, g, k = 0.018125, 2600.0, 9.81, 5.08e9
+        m = rho * 4.0 / 3.0 * math.pi * r ** 3
+        z = r - m * g / k
+        with tempfile.TemporaryDirectory() as d:
+            bed = os.path.join(d, "bed.txt")
+            with open(bed, "w") as f:
+                for i in range(40):
+                    f.write(f"{0.02 + 0.0363 * (i % 18)!r} {0.02 + 0.04 * (i // 18)!r} {z!r} {r!r}\n")
+            out = ballast("bench-bed", bed, "--steps", "2000", "--threads", "2", "--json",
+                          "--phase-times")
+        self.assertEqual(out.returncode, 0, out.stderr)
+        s = json.loads(out.stdout)
+        p = s["phase_times"]
+        self.assertEqual(p["steps"], 2000)
+        self.assertEqual(len(p["threads"]), 2)
+        for t in p["threads"]:
+            self.assertTrue(all(v >= 0.0 for v in t.values()), t)
+            self.assertGreater(t["contacts_us"], 0.0)
+        main = sum(p["threads"][0].values()) + p["serial_us"]
+        per_step = 1e6 * s["seconds"] / s["steps"]
+        self.assertAlmostEqual(main, per_step, delta=0.03 * per_step)
+
     def test_bad_packing_is_refused_with_file_line_and_value(self):
         with tempfile.TemporaryDirectory() as d:
             bed = os.path.join(d, "bed.txt")
