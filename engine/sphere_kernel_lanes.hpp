@@ -39,7 +39,7 @@ enum Row {
 // again from zero at a new ball: 0 + F, as the scalar pass starts from zero) and
 // stores the sum in the ball's a_side slot, which the ball's last lane leaves at its
 // total. Stored, never reloaded: adding into a_side in memory made each lane wait
-// for the store of the lane before (13 % of the kernel's samples).
+// for the store of the lane before (the hottest samples of a first version).
 struct RunningWrench {
   std::int32_t ball = -1;
   double sum[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
