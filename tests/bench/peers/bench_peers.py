@@ -75,6 +75,15 @@ def bench_bed(bed, path, steps, args, work):
     print(f"ours: 2 threads / 1 thread = {median[('ballast', 2)] / median[('ballast', 1)]:.2f}; "
           f"state after {steps} steps {'bit-identical' if identical else 'DIFFERS'} on 1 and 2 "
           f"threads over all rounds ({', '.join(sorted(hashes))})")
+    # The same ratios round by round: the runs of one round are minutes apart, so
+    # slow drift on the host cancels in them, and their spread shows how far the
+    # host moved a ratio within this run.
+    def per_round(num, den):
+        return ", ".join(f"{a['ball_steps_per_s'] / b['ball_steps_per_s']:.2f}"
+                         for a, b in zip(records[num], records[den]))
+    print(f"ours, per round: 2 / 1 thread {per_round(('ballast', 2), ('ballast', 1))}; "
+          f"/ LAMMPS, 1: {per_round(('ballast', 1), ('lammps', 1))}; "
+          f"/ YADE, 1: {per_round(('ballast', 1), ('yade', 1))}")
     physics_ok = crosscheck.report(bed, {code: records[(code, 1)][0] for code in
                                          ("ballast", "lammps", "yade")},
                                    [records[("lammps", 2)][0], records[("yade", 2)][0]])
