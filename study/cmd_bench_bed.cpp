@@ -110,16 +110,18 @@ void run(BenchBedArgs& a) {
       "contacts: %ld ball-ball, %ld ball-wall; mean normal %.6g N, mean tangential %.6g "
       "N; kinetic energy %.6g J; state hash %s\n",
       p.ball_ball.count, p.ball_wall.count, p.all.normal, p.all.tangential, p.kinetic(), hash);
-  if (a.phase_times) {
-    const PhaseTimes& t = sim.phase_times();
-    const double k = t.steps > 0 ? 1e6 / double(t.steps) : 0.0;
-    std::printf("phase times, us per step: serial %.2f\n", t.serial * k);
-    for (std::size_t n = 0; n < t.thread.size(); ++n)
+  if (a.phase_times) {  // the JSON's figures, one line per thread
+    const nlohmann::json t = phase_json(sim.phase_times());
+    std::printf("phase times, us per step: serial %.2f\n", t["serial_us"].get<double>());
+    for (std::size_t n = 0; n < t["threads"].size(); ++n) {
+      const nlohmann::json& u = t["threads"][n];
       std::printf(
           "  thread %zu: fork %.2f, contacts %.2f, barrier %.2f, walls and integrate %.2f, "
           "join %.2f\n",
-          n, t.thread[n].fork * k, t.thread[n].contacts * k, t.thread[n].barrier * k,
-          t.thread[n].integrate * k, t.thread[n].join * k);
+          n, u["fork_us"].get<double>(), u["contacts_us"].get<double>(),
+          u["barrier_us"].get<double>(), u["walls_and_integrate_us"].get<double>(),
+          u["join_us"].get<double>());
+    }
   }
 }
 
