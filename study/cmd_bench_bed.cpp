@@ -10,8 +10,10 @@
 
 #include "cases/bench_bed.hpp"
 #include "cases/packing_bodies.hpp"
+#include "engine/errors.hpp"
 #include "engine/sphere_kernel.hpp"
 #include "engine/state_hash.hpp"
+#include "study/bench_bed_scaling.hpp"
 
 namespace ballast {
 
@@ -25,6 +27,8 @@ struct BenchBedArgs {
   std::string rotation = "full";
   std::string export_packing;
   bool phase_times = false;
+  bool scaling = false;
+  long chunk = 500;
   BenchBedOptions bed;
 };
 
@@ -47,11 +51,70 @@ nlohmann::json means_json(const ContactForceMeans& m) {
           {"mean_tangential_force_N", m.tangential}};
 }
 
+std::string hex(unsigned long long h) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%016llx", h);
+  return s;
+}
+
+// --scaling: one thread against T in one process (study/bench_bed_scaling.hpp).
+void run_scaling(const BenchBedArgs& a, const Packing& packing) {
+  const int threads = a.threads > 0 ? a.threads : omp_get_max_threads();
+  if (threads < 2)
+    throw SetupError("--threads = " + std::to_string(threads) +
+                     ": --scaling compares one thread with this many (allowed: 2 or more)");
+  const ScalingRun s = interleaved_scaling(packing, a.bed, a.steps, a.chunk, threads);
+  const double ball_steps = double(packing.balls()) * double(a.steps);
+  const bool same = s.bit_identical();
+  const auto times_json = [](const ChunkTimes& t) {
+    return nlohmann::json{
+        {"seconds", {t.seconds_one, t.seconds_many}},
+        {"ratio", t.speedup()},
+        {"per_turn_quartiles",
+         {t.chunk_quantile(0.25), t.chunk_quantile(0.5), t.chunk_quantile(0.75)}}};
+  };
+  nlohmann::json hashes = nlohmann::json::array();
+  for (unsigned long long h : s.hash) hashes.push_back(hex(h));
+  if (a.json) {
+    const nlohmann::json j = {
+        {"code", "ballast"},
+        {"packing", a.packing},
+        {"balls", packing.balls()},
+        {"threads", threads},
+        {"steps", a.steps},
+        {"chunk_steps", a.chunk},
+        {"turns", s.speedup.chunk_speedup.size()},
+        {"ball_steps_per_s",
+         {ball_steps / s.speedup.seconds_one, ball_steps / s.speedup.seconds_many}},
+        {"speedup", times_json(s.speedup)},
+        {"independent_copies", times_json(s.capacity)},
+        {"state_hash", hashes},
+        {"bit_identical", same}};
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::printf(
+        "%s: %ld steps in turns of %ld: 1 thread %.4g ball-steps/s, %d threads %.4g: speed-up "
+        "%.3f (per turn: quartiles %.3f, %.3f, %.3f)\n",
+        a.packing.c_str(), a.steps, a.chunk, ball_steps / s.speedup.seconds_one, threads,
+        ball_steps / s.speedup.seconds_many, s.speedup.speedup(), s.speedup.chunk_quantile(0.25),
+        s.speedup.chunk_quantile(0.5), s.speedup.chunk_quantile(0.75));
+    std::printf(
+        "the host's bound in the same turns, %d independent copies at once, one thread each: "
+        "%.3f times one copy's throughput (per turn: quartiles %.3f, %.3f, %.3f)\n",
+        threads, s.capacity.speedup(), s.capacity.chunk_quantile(0.25),
+        s.capacity.chunk_quantile(0.5), s.capacity.chunk_quantile(0.75));
+    std::printf("state hashes (1 thread, %d threads, the copies): %s; %s\n", threads,
+                hashes.dump().c_str(), same ? "bit-identical" : "NOT bit-identical");
+  }
+  if (!same) throw std::runtime_error("bench-bed --scaling: the copies' end states differ");
+}
+
 void run(BenchBedArgs& a) {
-  if (a.threads > 0) omp_set_num_threads(a.threads);
   a.bed.rotation = parse_rotation_integrator(a.rotation);
   a.bed.log = &std::cerr;
   const Packing packing = read_packing_file(a.packing);
+  if (a.scaling) return run_scaling(a, packing);
+  if (a.threads > 0) omp_set_num_threads(a.threads);
   Simulation sim = make_bench_bed(packing, a.bed);
   sim.prepare();  // neighbour search and timestep check: set-up, not timed
   sim.set_phase_timing(a.phase_times);
@@ -61,10 +124,7 @@ void run(BenchBedArgs& a) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const BenchBedPhysics p = measure_bench_bed(sim);
   const double rate = double(sim.balls().size()) * double(a.steps) / seconds;
-  char hash[32];
-  std::snprintf(hash, sizeof hash, "%016llx",
-                static_cast<unsigned long long>(
-                    state_hash(sim.bodies(), sim.ball_contacts(), sim.wall_contacts())));
+  const std::string hash = hex(state_hash(sim.bodies(), sim.ball_contacts(), sim.wall_contacts()));
   if (!a.export_packing.empty())
     write_packing_file(
         a.export_packing, packing_of(sim),
@@ -109,7 +169,8 @@ void run(BenchBedArgs& a) {
   std::printf(
       "contacts: %ld ball-ball, %ld ball-wall; mean normal %.6g N, mean tangential %.6g "
       "N; kinetic energy %.6g J; state hash %s\n",
-      p.ball_ball.count, p.ball_wall.count, p.all.normal, p.all.tangential, p.kinetic(), hash);
+      p.ball_ball.count, p.ball_wall.count, p.all.normal, p.all.tangential, p.kinetic(),
+      hash.c_str());
   if (a.phase_times) {  // the JSON's figures, one line per thread
     const nlohmann::json t = phase_json(sim.phase_times());
     std::printf("phase times, us per step: serial %.2f\n", t["serial_us"].get<double>());
@@ -160,6 +221,11 @@ void register_bench_bed_command(CLI::App& app) {
   cmd->add_flag("--phase-times", a->phase_times,
                 "report each thread's time per step in each phase of the step (fork, force "
                 "pass, barrier, walls and integration, join) and the serial part");
+  cmd->add_flag("--scaling", a->scaling,
+                "measure the speed-up from 1 thread to --threads (default: all cores) in one "
+                "process: two copies of the bed take turns every --chunk steps, so that the "
+                "host's drift falls on both; checks that their end states are bit-identical");
+  cmd->add_option("--chunk", a->chunk, "steps per turn with --scaling")->check(CLI::PositiveNumber);
   cmd->add_option("--export-packing", a->export_packing,
                   "write the bed after the last step as a packing file");
   cmd->callback([a] { run(*a); });

@@ -251,6 +251,47 @@ class BenchBedCommand(unittest.TestCase):
         per_step = 1e6 * s["seconds"] / s["steps"]
         self.assertAlmostEqual(main, per_step, delta=0.03 * per_step)
 
+    def test_scaling_steps_every_copy_to_the_same_state_as_a_plain_run(self):
+        # 40 resting spheres and one falling onto them: one copy on one thread, one on
+        # two, two at once on one thread each, in turns of 100 steps. Every copy runs
+        # the same 400 steps from the same state, so all four end states are the
+        # plain one-thread run's, bit for bit; the ratios are those of the times.
+        r, rho, g, k = 0.018125, 2600.0, 9.81, 5.08e9
+        m = rho * 4.0 / 3.0 * math.pi * r ** 3
+        z = r - m * g / k
+        with tempfile.TemporaryDirectory() as d:
+            bed = os.path.join(d, "bed.txt")
+            with open(bed, "w") as f:
+                for i in range(40):
+                    f.write(f"{0.02 + 0.0363 * (i % 18)!r} {0.02 + 0.04 * (i // 18)!r} {z!r} {r!r}\n")
+                f.write(f"0.3 0.15 0.1 {r!r}\n")
+            plain = ballast("bench-bed", bed, "--steps", "400", "--threads", "1", "--json")
+            out = ballast("bench-bed", bed, "--steps", "400", "--threads", "2", "--scaling",
+                          "--chunk", "100", "--json")
+            refused = ballast("bench-bed", bed, "--steps", "400", "--threads", "1", "--scaling")
+        self.assertEqual(plain.returncode, 0, plain.stderr)
+        self.assertEqual(out.returncode, 0, out.stderr)
+        s = json.loads(out.stdout)
+        self.assertEqual((s["balls"], s["steps"], s["threads"], s["turns"]), (41, 400, 2, 4))
+        self.assertTrue(s["bit_identical"])
+        self.assertEqual(s["state_hash"], [json.loads(plain.stdout)["state_hash"]] * 4)
+        for key in ("speedup", "independent_copies"):
+            t = s[key]
+            self.assertTrue(all(v > 0.0 for v in t["seconds"]), t)
+            self.assertAlmostEqual(t["ratio"], t["seconds"][0] / t["seconds"][1],
+                                   delta=1e-12 * t["ratio"])
+            q = t["per_turn_quartiles"]
+            self.assertTrue(0.0 < q[0] <= q[1] <= q[2], q)
+        # The ball-steps/s figures are the speed-up's times: 41 balls x 400 steps.
+        one, many = s["speedup"]["seconds"]
+        self.assertAlmostEqual(s["ball_steps_per_s"][0], 41 * 400 / one, delta=1e-9 * 41 * 400 / one)
+        self.assertAlmostEqual(s["ball_steps_per_s"][1], 41 * 400 / many,
+                               delta=1e-9 * 41 * 400 / many)
+        # One thread has nothing to compare with: bad input, exit 2, naming the value.
+        self.assertEqual(refused.returncode, 2, refused.stderr)
+        self.assertIn("--threads = 1: --scaling compares one thread with this many "
+                      "(allowed: 2 or more)", refused.stderr)
+
     def test_bad_packing_is_refused_with_file_line_and_value(self):
         with tempfile.TemporaryDirectory() as d:
             bed = os.path.join(d, "bed.txt")

@@ -1,0 +1,98 @@
+#include "study/bench_bed_scaling.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+
+#include "engine/state_hash.hpp"
+
+namespace ballast {
+
+void ChunkTimes::add(double one, double many) {
+  seconds_one += one;
+  seconds_many += many;
+  chunk_speedup.push_back(one / many);
+}
+
+double ChunkTimes::chunk_quantile(double q) const {
+  if (chunk_speedup.empty()) return 0.0;
+  std::vector<double> v = chunk_speedup;
+  std::sort(v.begin(), v.end());
+  const double at = q * double(v.size() - 1);
+  const std::size_t lo = std::size_t(std::floor(at));
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (at - double(lo)) * (v[hi] - v[lo]);
+}
+
+bool ScalingRun::bit_identical() const {
+  return !hash.empty() && std::all_of(hash.begin(), hash.end(),
+                                      [this](unsigned long long h) { return h == hash[0]; });
+}
+
+namespace {
+
+template <class Work>
+double seconds_of(const Work& work) {
+  const auto start = std::chrono::steady_clock::now();
+  work();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+ScalingRun interleaved_scaling(const Packing& packing, const BenchBedOptions& options, long steps,
+                               long chunk, int threads) {
+  ScalingRun out;
+  out.threads = threads;
+  out.steps = steps;
+  out.chunk = chunk;
+  // Copy 0 on one thread, copy 1 on T threads, copies 2 .. T+1 at once, one thread
+  // each; all built alike.
+  std::vector<Simulation> sims;
+  sims.reserve(std::size_t(threads) + 2);
+  for (int c = 0; c < threads + 2; ++c) sims.push_back(make_bench_bed(packing, options));
+  for (int c = 0; c < threads + 2; ++c) {
+    omp_set_num_threads(c == 1 ? threads : 1);
+    sims[std::size_t(c)].prepare();  // neighbour search and timestep check: set-up, not timed
+  }
+  // The three ways to step, each for n steps, returning its wall time.
+  const auto one = [&](long n) {
+    omp_set_num_threads(1);
+    return seconds_of([&] { sims[0].run(n); });
+  };
+  const auto team = [&](long n) {
+    omp_set_num_threads(threads);
+    return seconds_of([&] { sims[1].run(n); });
+  };
+  const auto copies = [&](long n) {
+    return seconds_of([&] {
+#pragma omp parallel num_threads(threads)
+      {
+        // Each copy's steps open their own region, of one thread (the study's jobs
+        // do the same, study_runner.cpp).
+        omp_set_num_threads(1);
+        sims[std::size_t(2 + omp_get_thread_num())].run(n);
+      }
+    });
+  };
+  for (long done = 0, k = 0; done < steps; done += chunk, ++k) {
+    const long n = std::min(chunk, steps - done);
+    double t_one, t_team, t_copies;
+    if (k % 2 == 0) {  // forwards, then backwards: a linear drift cancels
+      t_one = one(n), t_team = team(n), t_copies = copies(n);
+    } else {
+      t_copies = copies(n), t_team = team(n), t_one = one(n);
+    }
+    out.speedup.add(t_one, t_team);
+    out.capacity.add(t_one, t_copies / double(threads));
+  }
+  omp_set_num_threads(threads);
+  for (const Simulation& s : sims)
+    out.hash.push_back(state_hash(s.bodies(), s.ball_contacts(), s.wall_contacts()));
+  return out;
+}
+
+}  // namespace ballast
