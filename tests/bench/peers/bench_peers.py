@@ -13,6 +13,11 @@
    Printed: median ball-steps/s of the stepping per code and thread count, our ratio
    to each, our 2-thread/1-thread speed-up, whether our 1- and 2-thread states are
    bit-identical (state hash), and the physics after the run beside each other.
+   Each round ends with `ballast bench-bed --scaling` (study/bench_bed_scaling.hpp):
+   our speed-up from 1 to 2 threads measured in one process, copies of the bed
+   taking turns every twentieth of the steps so that the host's drift cancels,
+   beside what 2 independent copies at once gave in the same turns (the host's
+   bound); its copies must end in the same state as the runs above.
 4. Exit 1 if a convention, the bit identity or the physics cross-check fails.
 """
 import argparse
@@ -54,6 +59,8 @@ def bench_bed(bed, path, steps, args, work):
     print(f"\n== {bed}: {len(packing.bodies)} bodies, {packing.balls} balls, {steps} steps of "
           f"{p.dt:g} s, {args.rounds} rounds; host load average {load_before[0]:.1f} on "
           f"{os.cpu_count()} cores ==", flush=True)
+    scaling = []
+    chunk = max(1, steps // 20)
     for k in range(args.rounds):
         order = runs[k % len(runs):] + runs[:k % len(runs)]
         for code, n in order:
@@ -61,6 +68,12 @@ def bench_bed(bed, path, steps, args, work):
             records[(code, n)].append(r)
             print(f"  round {k + 1}: {code:7s} {n} {'ranks' if code == 'lammps' else 'threads'}:"
                   f" {r['ball_steps_per_s']:.3e} ball-steps/s ({r['seconds']:.2f} s)", flush=True)
+        s = ballast_peer.run(args.ballast, packing.source, p, 2,
+                             extra=("--scaling", "--chunk", str(chunk)))
+        scaling.append(s)
+        print(f"  round {k + 1}: ballast 1 against 2 threads in one process, turns of {chunk} "
+              f"steps: speed-up {s['speedup']['ratio']:.3f}; 2 independent copies "
+              f"{s['independent_copies']['ratio']:.3f}", flush=True)
     median = {r: statistics.median(x["ball_steps_per_s"] for x in records[r]) for r in runs}
     print(f"\n{bed}: ball-steps/s, median of {args.rounds} rounds")
     print("| code | 1 thread / process | 2 threads / ranks | 2 / 1 | ours / this, 1 | ours / this, 2 |")
@@ -71,10 +84,17 @@ def bench_bed(bed, path, steps, args, work):
         r2 = median[("ballast", 2)] / two
         print(f"| {code} | {one:.3g} | {two:.3g} | {two / one:.2f} | {r1:.2f} | {r2:.2f} |")
     hashes = {x["state_hash"] for n in (1, 2) for x in records[("ballast", n)]}
+    hashes |= {h for x in scaling for h in x["state_hash"]}
     identical = len(hashes) == 1
     print(f"ours: 2 threads / 1 thread = {median[('ballast', 2)] / median[('ballast', 1)]:.2f}; "
           f"state after {steps} steps {'bit-identical' if identical else 'DIFFERS'} on 1 and 2 "
-          f"threads over all rounds ({', '.join(sorted(hashes))})")
+          f"threads over all rounds, --scaling's copies included ({', '.join(sorted(hashes))})")
+    speedup = [x["speedup"]["ratio"] for x in scaling]
+    bound = [x["independent_copies"]["ratio"] for x in scaling]
+    print(f"ours, 2 / 1 thread in one process (bench-bed --scaling), per round: "
+          f"{', '.join(f'{v:.2f}' for v in speedup)} (median {statistics.median(speedup):.2f}); "
+          f"the host's bound, 2 independent copies at once: "
+          f"{', '.join(f'{v:.2f}' for v in bound)} (median {statistics.median(bound):.2f})")
     # The same ratios round by round: the runs of one round are minutes apart, so
     # slow drift on the host cancels in them, and their spread shows how far the
     # host moved a ratio within this run.
@@ -94,6 +114,7 @@ def bench_bed(bed, path, steps, args, work):
             "omp_wait_policy": os.environ.get("OMP_WAIT_POLICY", "default"),
             "median_ball_steps_per_s": {f"{c}_{n}": v for (c, n), v in median.items()},
             "records": {f"{c}_{n}": v for (c, n), v in records.items()},
+            "scaling": scaling,
             "bit_identical": identical, "physics_ok": physics_ok}
 
 
