@@ -1,11 +1,25 @@
 #include "cases/sphere_packing.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
 #include <string>
 
 namespace ballast {
+
+int smallest_settled_section(double solid_volume, const Vec3& lo, const Vec3& hi) {
+  const double lx = hi.x() - lo.x(), ly = hi.y() - lo.y();
+  const double height = solid_volume / (0.6 * lx * ly);
+  // Sections across x, y and z of a bed lx × ly × height; ties go to z, then y
+  // (the order of the comparisons). Only a bed higher than its floor is wide (a
+  // column) keeps z slowest.
+  const double section[3] = {ly * height, lx * height, lx * ly};
+  int best = 2;
+  for (int k : {1, 0})
+    if (section[k] < section[best]) best = k;
+  return best;
+}
 
 std::vector<Vec3> random_loose_packing(int count, double radius, const Vec3& lo, const Vec3& hi,
                                        double volume_fraction, std::uint64_t seed) {
@@ -60,12 +74,35 @@ std::vector<Vec3> random_loose_packing(int count, double radius, const Vec3& lo,
     grid[cx + n[0] * (cy + n[1] * cz)].push_back(static_cast<int>(out.size()));
     out.push_back(p);
   }
-  // Hand the centres back cell by cell (z, then y, then x): bodies created in this
-  // order have neighbours with nearby indices, so each thread's share of contacts
-  // and bodies touches mostly its own memory.
+  // Hand the centres back cell by cell: bodies created in this order have neighbours
+  // with nearby indices, so each thread's share of contacts and bodies touches
+  // mostly its own memory. The threads split the bodies by index, so the slowest
+  // axis of the order is the one their boundary cuts, and the balls within a contact
+  // of that boundary are read by one core and written by the other every step. The
+  // cloud falls along −z into a bed of about the footprint × the height it has at a
+  // packing fraction of 0.6, so the slowest axis is the one across which that bed's
+  // section is smallest: for the paper's 700 × 300 mm box a section of 300 mm × the
+  // bed's height, not the 700 × 300 mm footprint, which halved the balls near the
+  // boundary and gave the sphere bench bed 6 % more of its two-thread bound
+  // (docs/PERFORMANCE.md, "Numbering along the bed's smallest section").
+  // The other two axes follow in the order z, y, x.
+  const int slowest = smallest_settled_section(count * sphere_volume, lo, hi);
+  int axes[3] = {slowest, 0, 0};
+  for (int k = 2, m = 1; k >= 0; --k)
+    if (k != slowest) axes[m++] = k;
+  int stride[3];
+  stride[axes[2]] = 1;
+  stride[axes[1]] = n[axes[2]];
+  stride[axes[0]] = n[axes[2]] * n[axes[1]];
+  std::vector<std::vector<int>> ordered_cells(grid.size());
+  for (int z = 0; z < n[2]; ++z)
+    for (int y = 0; y < n[1]; ++y)
+      for (int x = 0; x < n[0]; ++x)
+        ordered_cells[std::size_t(x * stride[0] + y * stride[1] + z * stride[2])] =
+            std::move(grid[std::size_t(x + n[0] * (y + n[1] * z))]);
   std::vector<Vec3> ordered;
   ordered.reserve(out.size());
-  for (const auto& cell_members : grid)
+  for (const auto& cell_members : ordered_cells)
     for (int j : cell_members) ordered.push_back(out[j]);
   return ordered;
 }

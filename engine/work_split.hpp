@@ -1,8 +1,10 @@
 // Splitting a loop between the threads of a parallel region by work rather than by
 // count. `omp for schedule(static)` hands each thread the same number of balls or
-// bodies; in a settled bed numbered bottom to top (the packings hand bodies back
-// cell by cell, z slowest) the lower half has the base and the denser contacts, so
-// one thread waited for the other at every barrier (1.64x on two threads). Here
+// bodies; in a settled bed numbered bottom to top (as the packings numbered them
+// before they were numbered across the bed's smallest section, sphere_packing.hpp)
+// the lower half has the base and the denser contacts, so one thread waited for the
+// other at every barrier (1.64x on two threads); any numbering leaves some such
+// unevenness, and the walls' contacts fall to the shares that hold their balls. Here
 // thread t takes the items whose cumulative cost lies in [t, t+1)·total/threads.
 // The split changes which thread computes an item, never what it computes, so the
 // results stay bit-identical for any thread count.
