@@ -11,15 +11,15 @@
 
 namespace ballast {
 
-void ChunkTimes::add(double one, double many) {
+void TurnTimes::add(double one, double many) {
   seconds_one += one;
   seconds_many += many;
-  chunk_speedup.push_back(one / many);
+  per_turn.push_back(one / many);
 }
 
-double ChunkTimes::chunk_quantile(double q) const {
-  if (chunk_speedup.empty()) return 0.0;
-  std::vector<double> v = chunk_speedup;
+double TurnTimes::quantile(double q) const {
+  if (per_turn.empty()) return 0.0;
+  std::vector<double> v = per_turn;
   std::sort(v.begin(), v.end());
   const double at = q * double(v.size() - 1);
   const std::size_t lo = std::size_t(std::floor(at));
@@ -87,7 +87,7 @@ ScalingRun interleaved_scaling(const Packing& packing, const BenchBedOptions& op
       t_copies = copies(n), t_team = team(n), t_one = one(n);
     }
     out.speedup.add(t_one, t_team);
-    out.capacity.add(t_one, t_copies / double(threads));
+    out.independent.add(t_one, t_copies / double(threads));
   }
   omp_set_num_threads(threads);
   for (const Simulation& s : sims)

@@ -29,27 +29,27 @@
 
 namespace ballast {
 
-// One thread against T, chunk by chunk.
-struct ChunkTimes {
-  double seconds_one = 0.0, seconds_many = 0.0;  // stepping time on 1 and on T threads, s
-  // Per chunk k: time on one thread / time on T threads for the same steps.
-  std::vector<double> chunk_speedup;
+// The one-thread copy's times against another way of stepping, turn by turn.
+struct TurnTimes {
+  double seconds_one = 0.0, seconds_many = 0.0;  // summed over the turns, s
+  // Per turn k: the one-thread time over the other for the same steps.
+  std::vector<double> per_turn;
   void add(double one, double many);
-  // Ratio of the total times: the speed-up over the whole run.
-  double speedup() const { return seconds_one / seconds_many; }
-  // Quantile q in [0, 1] of chunk_speedup (linear between order statistics).
-  double chunk_quantile(double q) const;
+  // Ratio of the summed times: the figure for the whole run.
+  double ratio() const { return seconds_one / seconds_many; }
+  // Quantile q in [0, 1] of per_turn (linear between order statistics).
+  double quantile(double q) const;
 };
 
 struct ScalingRun {
   int threads = 2;  // T
   long steps = 0;   // per copy
   long chunk = 0;   // steps per turn
-  // One copy on one thread against one copy on T threads.
-  ChunkTimes speedup;
-  // One copy on one thread against T copies at once, one thread each, with the
-  // "many" time divided by T: each turn's throughput ratio, the host's bound.
-  ChunkTimes capacity;
+  // One copy on one thread against one copy on T threads: the speed-up.
+  TurnTimes speedup;
+  // One copy on one thread against T copies at once, one thread each, their time
+  // divided by T: the throughput ratio, the host's bound.
+  TurnTimes independent;
   // state_hash after the last step: the one-thread copy, the T-thread copy, then
   // the T independent copies.
   std::vector<unsigned long long> hash;

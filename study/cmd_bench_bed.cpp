@@ -66,12 +66,11 @@ void run_scaling(const BenchBedArgs& a, const Packing& packing) {
   const ScalingRun s = interleaved_scaling(packing, a.bed, a.steps, a.chunk, threads);
   const double ball_steps = double(packing.balls()) * double(a.steps);
   const bool same = s.bit_identical();
-  const auto times_json = [](const ChunkTimes& t) {
+  const auto times_json = [](const TurnTimes& t) {
     return nlohmann::json{
         {"seconds", {t.seconds_one, t.seconds_many}},
-        {"ratio", t.speedup()},
-        {"per_turn_quartiles",
-         {t.chunk_quantile(0.25), t.chunk_quantile(0.5), t.chunk_quantile(0.75)}}};
+        {"ratio", t.ratio()},
+        {"per_turn_quartiles", {t.quantile(0.25), t.quantile(0.5), t.quantile(0.75)}}};
   };
   nlohmann::json hashes = nlohmann::json::array();
   for (unsigned long long h : s.hash) hashes.push_back(hex(h));
@@ -83,11 +82,11 @@ void run_scaling(const BenchBedArgs& a, const Packing& packing) {
         {"threads", threads},
         {"steps", a.steps},
         {"chunk_steps", a.chunk},
-        {"turns", s.speedup.chunk_speedup.size()},
+        {"turns", s.speedup.per_turn.size()},
         {"ball_steps_per_s",
          {ball_steps / s.speedup.seconds_one, ball_steps / s.speedup.seconds_many}},
         {"speedup", times_json(s.speedup)},
-        {"independent_copies", times_json(s.capacity)},
+        {"independent_copies", times_json(s.independent)},
         {"state_hash", hashes},
         {"bit_identical", same}};
     std::cout << j.dump(2) << "\n";
@@ -96,13 +95,13 @@ void run_scaling(const BenchBedArgs& a, const Packing& packing) {
         "%s: %ld steps in turns of %ld: 1 thread %.4g ball-steps/s, %d threads %.4g: speed-up "
         "%.3f (per turn: quartiles %.3f, %.3f, %.3f)\n",
         a.packing.c_str(), a.steps, a.chunk, ball_steps / s.speedup.seconds_one, threads,
-        ball_steps / s.speedup.seconds_many, s.speedup.speedup(), s.speedup.chunk_quantile(0.25),
-        s.speedup.chunk_quantile(0.5), s.speedup.chunk_quantile(0.75));
+        ball_steps / s.speedup.seconds_many, s.speedup.ratio(), s.speedup.quantile(0.25),
+        s.speedup.quantile(0.5), s.speedup.quantile(0.75));
     std::printf(
         "the host's bound in the same turns, %d independent copies at once, one thread each: "
         "%.3f times one copy's throughput (per turn: quartiles %.3f, %.3f, %.3f)\n",
-        threads, s.capacity.speedup(), s.capacity.chunk_quantile(0.25),
-        s.capacity.chunk_quantile(0.5), s.capacity.chunk_quantile(0.75));
+        threads, s.independent.ratio(), s.independent.quantile(0.25), s.independent.quantile(0.5),
+        s.independent.quantile(0.75));
     std::printf("state hashes (1 thread, %d threads, the copies): %s; %s\n", threads,
                 hashes.dump().c_str(), same ? "bit-identical" : "NOT bit-identical");
   }
