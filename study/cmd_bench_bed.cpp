@@ -63,6 +63,10 @@ void run_scaling(const BenchBedArgs& a, const Packing& packing) {
   if (threads < 2)
     throw SetupError("--threads = " + std::to_string(threads) +
                      ": --scaling compares one thread with this many (allowed: 2 or more)");
+  if (a.phase_times || !a.export_packing.empty())
+    throw SetupError(std::string(a.phase_times ? "--phase-times" : "--export-packing") +
+                     " with --scaling: it steps several copies of the bed (allowed: a plain "
+                     "bench-bed run for them)");
   const ScalingRun s = interleaved_scaling(packing, a.bed, a.steps, a.chunk, threads);
   const double ball_steps = double(packing.balls()) * double(a.steps);
   const bool same = s.bit_identical();

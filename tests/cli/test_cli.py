@@ -269,6 +269,8 @@ class BenchBedCommand(unittest.TestCase):
             out = ballast("bench-bed", bed, "--steps", "400", "--threads", "2", "--scaling",
                           "--chunk", "100", "--json")
             refused = ballast("bench-bed", bed, "--steps", "400", "--threads", "1", "--scaling")
+            refused_too = ballast("bench-bed", bed, "--steps", "400", "--threads", "2", "--scaling",
+                                  "--phase-times")
         self.assertEqual(plain.returncode, 0, plain.stderr)
         self.assertEqual(out.returncode, 0, out.stderr)
         s = json.loads(out.stdout)
@@ -291,6 +293,8 @@ class BenchBedCommand(unittest.TestCase):
         self.assertEqual(refused.returncode, 2, refused.stderr)
         self.assertIn("--threads = 1: --scaling compares one thread with this many "
                       "(allowed: 2 or more)", refused.stderr)
+        self.assertEqual(refused_too.returncode, 2, refused_too.stderr)
+        self.assertIn("--phase-times with --scaling", refused_too.stderr)
 
     def test_bad_packing_is_refused_with_file_line_and_value(self):
         with tempfile.TemporaryDirectory() as d:
