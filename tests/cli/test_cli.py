@@ -217,20 +217,29 @@ class BenchBedCommand(unittest.TestCase):
         self.assertAlmostEqual(s["kinetic_energy_J"], 0.5 * m * v * v, delta=1e-9 * m * v * v)
         self.assertEqual(len(s["state_hash"]), 16)
 
+    @staticmethod
+    def resting_row(directory, falling=False):
+        """A packing file of 40 spheres of the paper's size resting on the floor at
+        their static overlap m g / k (k = 5.08e9 N/m per contact), in rows of 18;
+        with `falling`, one more sphere 0.1 m up. Returns its path."""
+        r, rho, g, k = 0.018125, 2600.0, 9.81, 5.08e9
+        z = r - rho * 4.0 / 3.0 * math.pi * r ** 3 * g / k
+        bed = os.path.join(directory, "bed.txt")
+        with open(bed, "w") as f:
+            for i in range(40):
+                f.write(f"{0.02 + 0.0363 * (i % 18)!r} {0.02 + 0.04 * (i // 18)!r} {z!r} {r!r}\n")
+            if falling:
+                f.write(f"0.3 0.15 0.1 {r!r}\n")
+        return bed
+
     def test_phase_times_add_up_to_the_time_of_the_steps(self):
         # A row of 40 resting spheres stepped on two threads: each thread's phases
         # (fork, force pass, barrier, walls and integration, join) and the serial part
         # cover the step, so the main thread's sum plus the serial part is the time
         # per step that the ball-steps/s figure implies (the loop around the steps
         # adds nanoseconds).
-        r, rho, g, k = 0.018125, 2600.0, 9.81, 5.08e9
-        m = rho * 4.0 / 3.0 * math.pi * r ** 3
-        z = r - m * g / k
         with tempfile.TemporaryDirectory() as d:
-            bed = os.path.join(d, "bed.txt")
-            with open(bed, "w") as f:
-                for i in range(40):
-                    f.write(f"{0.02 + 0.0363 * (i % 18)!r} {0.02 + 0.04 * (i // 18)!r} {z!r} {r!r}\n")
+            bed = self.resting_row(d)
             out = ballast("bench-bed", bed, "--steps", "2000", "--threads", "2", "--json",
                           "--phase-times")
         self.assertEqual(out.returncode, 0, out.stderr)
@@ -256,15 +265,8 @@ class BenchBedCommand(unittest.TestCase):
         # two, two at once on one thread each, in turns of 100 steps. Every copy runs
         # the same 400 steps from the same state, so all four end states are the
         # plain one-thread run's, bit for bit; the ratios are those of the times.
-        r, rho, g, k = 0.018125, 2600.0, 9.81, 5.08e9
-        m = rho * 4.0 / 3.0 * math.pi * r ** 3
-        z = r - m * g / k
         with tempfile.TemporaryDirectory() as d:
-            bed = os.path.join(d, "bed.txt")
-            with open(bed, "w") as f:
-                for i in range(40):
-                    f.write(f"{0.02 + 0.0363 * (i % 18)!r} {0.02 + 0.04 * (i // 18)!r} {z!r} {r!r}\n")
-                f.write(f"0.3 0.15 0.1 {r!r}\n")
+            bed = self.resting_row(d, falling=True)
             plain = ballast("bench-bed", bed, "--steps", "400", "--threads", "1", "--json")
             out = ballast("bench-bed", bed, "--steps", "400", "--threads", "2", "--scaling",
                           "--chunk", "100", "--json")
