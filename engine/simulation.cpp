@@ -474,7 +474,9 @@ void Simulation::step() {
     // to on the main thread.
     const PhaseTimes::Thread& main = phase_times_.thread[0];
     const double region = main.fork + main.contacts + main.barrier + main.integrate + main.join;
-    phase_times_.serial += omp_get_wtime() - step_start - (region - phase_region_before_);
+    const double step_seconds = omp_get_wtime() - step_start;
+    phase_times_.serial += step_seconds - (region - phase_region_before_);
+    phase_times_.step_seconds.push_back(float(step_seconds));
     phase_region_before_ = region;
   }
 }
@@ -574,11 +576,18 @@ void Simulation::do_step() {
       p.barrier += t2 - t1;
       p.integrate += t3 - t2;
       phase_end_[me] = t3;
+      // The join is known after the region; the main thread fills it in there.
+      p.per_step.push_back({float(t0 - region_start), float(t1 - t0), float(t2 - t1),
+                            float(t3 - t2), 0.0f});
     }
   }
   if (timing) {
     const double region_end = omp_get_wtime();
-    for (int t = 0; t < threads; ++t) phase_times_.thread[t].join += region_end - phase_end_[t];
+    for (int t = 0; t < threads; ++t) {
+      PhaseTimes::Thread& p = phase_times_.thread[t];
+      p.join += region_end - phase_end_[t];
+      if (!p.per_step.empty()) p.per_step.back()[4] = float(region_end - phase_end_[t]);
+    }
     ++phase_times_.steps;
   }
   contact_split_.update();

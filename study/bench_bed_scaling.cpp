@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 
 #include "engine/state_hash.hpp"
+#include "study/sample_quantile.hpp"
 
 namespace ballast {
 
@@ -16,15 +16,7 @@ void TurnTimes::add(double one, double many) {
   per_turn.push_back(one / many);
 }
 
-double TurnTimes::quantile(double q) const {
-  if (per_turn.empty()) return 0.0;
-  std::vector<double> v = per_turn;
-  std::sort(v.begin(), v.end());
-  const double at = q * double(v.size() - 1);
-  const std::size_t lo = std::size_t(std::floor(at));
-  const std::size_t hi = std::min(lo + 1, v.size() - 1);
-  return v[lo] + (at - double(lo)) * (v[hi] - v[lo]);
-}
+double TurnTimes::quantile(double q) const { return sample_quantile(per_turn, q); }
 
 bool ScalingRun::bit_identical() const {
   return !hash.empty() && std::all_of(hash.begin(), hash.end(),

@@ -14,6 +14,7 @@
 #include "engine/sphere_kernel.hpp"
 #include "engine/state_hash.hpp"
 #include "study/bench_bed_scaling.hpp"
+#include "study/phase_stats.hpp"
 
 namespace ballast {
 
@@ -42,7 +43,22 @@ nlohmann::json phase_json(const PhaseTimes& p) {
                        {"barrier_us", t.barrier * k},
                        {"walls_and_integrate_us", t.integrate * k},
                        {"join_us", t.join * k}});
-  return {{"steps", p.steps}, {"serial_us", p.serial * k}, {"threads", threads}};
+  const PhaseStats st = phase_stats(p);
+  nlohmann::json medians = nlohmann::json::array();
+  for (const std::array<double, 5>& m : st.thread_median_us)
+    medians.push_back({{"fork_us", m[0]},
+                       {"contacts_us", m[1]},
+                       {"barrier_us", m[2]},
+                       {"walls_and_integrate_us", m[3]},
+                       {"join_us", m[4]}});
+  return {{"steps", p.steps},
+          {"serial_us", p.serial * k},
+          {"threads", threads},
+          {"step_us",
+           {{"mean", st.step_mean_us},
+            {"quartiles", st.step_quartiles_us},
+            {"time_beyond_median", st.time_beyond_median}}},
+          {"thread_medians", medians}};
 }
 
 nlohmann::json means_json(const ContactForceMeans& m) {
@@ -186,6 +202,23 @@ void run(BenchBedArgs& a) {
           u["barrier_us"].get<double>(), u["walls_and_integrate_us"].get<double>(),
           u["join_us"].get<double>());
     }
+    const nlohmann::json& st = t["step_us"];
+    std::printf(
+        "step, us: mean %.2f, quartiles %.2f, %.2f, %.2f; time beyond the median step: "
+        "%.1f %% of the run\n",
+        st["mean"].get<double>(), st["quartiles"][0].get<double>(),
+        st["quartiles"][1].get<double>(), st["quartiles"][2].get<double>(),
+        100.0 * st["time_beyond_median"].get<double>());
+    std::printf("medians, us per step:\n");
+    for (std::size_t n = 0; n < t["thread_medians"].size(); ++n) {
+      const nlohmann::json& u = t["thread_medians"][n];
+      std::printf(
+          "  thread %zu: fork %.2f, contacts %.2f, barrier %.2f, walls and integrate %.2f, "
+          "join %.2f\n",
+          n, u["fork_us"].get<double>(), u["contacts_us"].get<double>(),
+          u["barrier_us"].get<double>(), u["walls_and_integrate_us"].get<double>(),
+          u["join_us"].get<double>());
+    }
   }
 }
 
@@ -223,7 +256,8 @@ void register_bench_bed_command(CLI::App& app) {
       ->check(CLI::IsMember({-1, 0, 4, 8}));
   cmd->add_flag("--phase-times", a->phase_times,
                 "report each thread's time per step in each phase of the step (fork, force "
-                "pass, barrier, walls and integration, join) and the serial part");
+                "pass, barrier, walls and integration, join) and the serial part, as means "
+                "and as medians over the steps, and the spread of the step's wall time");
   cmd->add_flag("--scaling", a->scaling,
                 "measure the speed-up from 1 thread to --threads (default: all cores) in one "
                 "process: two copies of the bed take turns every --chunk steps, so that the "

@@ -259,6 +259,23 @@ class BenchBedCommand(unittest.TestCase):
         main = region[0] + p["serial_us"]
         per_step = 1e6 * s["seconds"] / s["steps"]
         self.assertAlmostEqual(main, per_step, delta=0.03 * per_step)
+        # Each step's own wall time: their mean is the same time per step, and the
+        # time beyond the median step is a share of it.
+        st = p["step_us"]
+        self.assertAlmostEqual(st["mean"], per_step, delta=0.03 * per_step)
+        q = st["quartiles"]
+        self.assertTrue(0.0 < q[0] <= q[1] <= q[2], q)
+        self.assertTrue(0.0 <= st["time_beyond_median"] < 1.0, st)
+        # Half the steps take at most the median, so the mean exceeds the median by no
+        # more than the time beyond it: mean - median <= share x mean.
+        self.assertLessEqual(st["mean"] - q[1], st["time_beyond_median"] * st["mean"] + 1e-6)
+        # Every phase of a step is part of that step, so no phase's median exceeds the
+        # median step (a phase booked in other units or to the wrong step would).
+        self.assertEqual(len(p["thread_medians"]), 2)
+        for m in p["thread_medians"]:
+            self.assertTrue(all(v >= 0.0 for v in m.values()), m)
+            self.assertGreater(m["contacts_us"], 0.0)
+            self.assertTrue(all(v <= q[1] * (1 + 1e-6) for v in m.values()), (m, q))
 
     def test_scaling_steps_every_copy_to_the_same_state_as_a_plain_run(self):
         # 40 resting spheres and one falling onto them: one copy on one thread, one on
