@@ -1,7 +1,10 @@
 #include "engine/cell_list.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace ballast {
 
@@ -47,32 +50,58 @@ int CellList::cell_of(const Vec3& x) const {
 
 namespace {
 
-// Calls visit(b) for every ball b > a in the 27 cells around ball a that is within
-// reach and belongs to another body.
-template <class Visit>
-void scan_partners(const CellList& cells, const std::vector<Vec3>& x, const std::vector<double>& r,
-                   const std::vector<Index>& body, double skin, Index a, Visit&& visit) {
-  const auto c = cells.coords_of(x[a]);
+// A ball as the search reads it, copied in cell order so that the balls of a cell
+// are read from consecutive memory rather than gathered from the ball arrays one
+// cache line each (15 ns a distance test on the Sample 1 bed, most of it waiting).
+struct PackedBall {
+  double x, y, z, r;
+  Index ball, body;
+};
+
+std::vector<PackedBall> pack_by_cell(const CellList& cells, const std::vector<Vec3>& x,
+                                     const std::vector<double>& r, const std::vector<Index>& body) {
+  const std::vector<Index>& order = cells.cell_balls();
+  std::vector<PackedBall> packed(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const Index i = order[k];
+    packed[k] = {x[i].x(), x[i].y(), x[i].z(), r[i], i, body[i]};
+  }
+  return packed;
+}
+
+// Appends to `out` every ball b > a in the 27 cells around ball a that is within
+// reach and belongs to another body. Branch-free: every ball of a cell is written to
+// the next slot and the slot advances by the test's 0/1 (which of a cell's balls
+// pass follows no pattern a predictor could learn, and a bisection for b > a per
+// cell cost more than the tests it saved).
+void scan_partners(const CellList& cells, const std::vector<PackedBall>& packed, const Vec3& xa,
+                   double ra, Index body_a, double skin, Index a, std::vector<Index>& out) {
+  const auto c = cells.coords_of(xa);
   const auto d = cells.dims();
   const auto& start = cells.cell_start();
-  const auto& balls = cells.cell_balls();
   for (int dz = -1; dz <= 1; ++dz) {
     const int cz = c[2] + dz;
     if (cz < 0 || cz >= d[2]) continue;
     for (int dy = -1; dy <= 1; ++dy) {
       const int cy = c[1] + dy;
       if (cy < 0 || cy >= d[1]) continue;
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int cx = c[0] + dx;
-        if (cx < 0 || cx >= d[0]) continue;
-        const int cell = cells.cell_index(cx, cy, cz);
-        for (Index k = start[cell]; k < start[cell + 1]; ++k) {
-          const Index b = balls[k];
-          if (b <= a || body[b] == body[a]) continue;
-          const double reach = r[a] + r[b] + skin;
-          if ((x[b] - x[a]).squaredNorm() < reach * reach) visit(b);
-        }
+      const int cx0 = std::max(c[0] - 1, 0), cx1 = std::min(c[0] + 1, d[0] - 1);
+      // Cells are numbered x-fastest: the row's cells are one slice of `packed`.
+      const Index k0 = start[cells.cell_index(cx0, cy, cz)];
+      const Index k1 = start[cells.cell_index(cx1, cy, cz) + 1];
+      std::size_t w = out.size();
+      out.resize(w + std::size_t(k1 - k0));
+      Index* const slot = out.data();
+      for (Index k = k0; k < k1; ++k) {
+        const PackedBall& q = packed[k];
+        const double reach = ra + q.r + skin;
+        const double ex = q.x - xa.x(), ey = q.y - xa.y(), ez = q.z - xa.z();
+        const bool keep =
+            (q.ball > a) & (q.body != body_a) & (ex * ex + ey * ey + ez * ez < reach * reach);
+        slot[w] = q.ball;
+        w += keep;
       }
+      out.resize(w);
     }
   }
 }
@@ -83,26 +112,35 @@ void find_candidate_pairs(const CellList& cells, const std::vector<Vec3>& positi
                           const std::vector<double>& radii, const std::vector<Index>& body,
                           double skin, std::vector<Index>& out_a, std::vector<Index>& out_b) {
   const Index n = static_cast<Index>(positions.size());
-  // Two passes (count, then fill) so each ball writes its own slice: no locks, and
-  // the result does not depend on how OpenMP splits the loop.
-  std::vector<Index> offset(n + 1, 0);
-#pragma omp parallel for schedule(static)
-  for (Index a = 0; a < n; ++a) {
-    Index count = 0;
-    scan_partners(cells, positions, radii, body, skin, a, [&](Index) { ++count; });
-    offset[a + 1] = count;
+  const std::vector<PackedBall> packed = pack_by_cell(cells, positions, radii, body);
+  // One scan: each thread takes a contiguous range of balls and lists their pairs in
+  // its own vectors, which are then joined in thread order, so the result is the
+  // serial one whatever the thread count. (A count pass and a fill pass, each ball
+  // writing its own slice, scanned the cells twice.)
+  const int threads = omp_get_max_threads();
+  std::vector<std::vector<Index>> part_a(threads), part_b(threads);
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num(), team = omp_get_num_threads();
+    const Index lo = Index(std::int64_t(n) * t / team), hi = Index(std::int64_t(n) * (t + 1) / team);
+    std::vector<Index>& pa = part_a[t];
+    std::vector<Index>& pb = part_b[t];
+    for (Index a = lo; a < hi; ++a) {
+      const std::size_t first = pb.size();
+      scan_partners(cells, packed, positions[a], radii[a], body[a], skin, a, pb);
+      std::sort(pb.begin() + std::ptrdiff_t(first), pb.end());
+      pa.resize(pb.size(), a);
+    }
   }
-  for (Index a = 0; a < n; ++a) offset[a + 1] += offset[a];
-  out_a.resize(offset[n]);
-  out_b.resize(offset[n]);
-#pragma omp parallel for schedule(static)
-  for (Index a = 0; a < n; ++a) {
-    Index k = offset[a];
-    scan_partners(cells, positions, radii, body, skin, a, [&](Index b) {
-      out_a[k] = a;
-      out_b[k++] = b;
-    });
-    std::sort(out_b.begin() + offset[a], out_b.begin() + offset[a + 1]);
+  std::size_t total = 0;
+  for (const auto& p : part_a) total += p.size();
+  out_a.clear();
+  out_b.clear();
+  out_a.reserve(total);
+  out_b.reserve(total);
+  for (int t = 0; t < threads; ++t) {
+    out_a.insert(out_a.end(), part_a[t].begin(), part_a[t].end());
+    out_b.insert(out_b.end(), part_b[t].begin(), part_b[t].end());
   }
 }
 
