@@ -59,6 +59,8 @@ Simulation make_bed(const BedOptions& o) {
   s.rotation = o.rotation;
   s.sphere_fast_path = o.sphere_fast_path;
   s.skip_far_candidates = o.skip_far_candidates;
+  s.adaptive_rebuild = o.adaptive_rebuild;
+  s.fixed_dt = o.fixed_dt;
   s.simd_lanes = o.simd_lanes;
   s.log = o.log;
   Simulation sim(s);

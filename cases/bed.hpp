@@ -44,6 +44,8 @@ struct BedOptions {
   RotationIntegrator rotation = RotationIntegrator::kPfc;
   bool sphere_fast_path = true;     // SimulationSettings::sphere_fast_path
   bool skip_far_candidates = true;  // SimulationSettings::skip_far_candidates
+  bool adaptive_rebuild = true;     // SimulationSettings::adaptive_rebuild
+  std::optional<double> fixed_dt;   // s; unset: dt_safety × critical estimate
   int simd_lanes = -1;              // SimulationSettings::simd_lanes
   // Where the particles go (e.g. the centres of a settled sphere bed); empty: a loose
   // random cloud of `count` particles.

@@ -47,6 +47,7 @@ SimulationSettings settings_for(const BoxTestScene& s, double bound) {
   st.dt_safety = s.dt_safety;
   st.fixed_dt = s.fixed_dt;
   st.rotation = s.rotation;
+  st.adaptive_rebuild = s.adaptive_rebuild;
   return st;
 }
 

@@ -122,6 +122,7 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& j, const std::string& sc
   n.text("rotation", rotation, "\"pfc\" or \"full\"",
          [](const std::string& v) { return v == "pfc" || v == "full"; });
   s.rotation = parse_rotation_integrator(rotation);
+  n.boolean("adaptive_rebuild", s.adaptive_rebuild);
   n.finish();
 
   JsonFields p(top.object("preparation"), "/preparation");

@@ -43,6 +43,9 @@ struct BoxTestScene {
   std::optional<double> fixed_dt;  // s; unset: dt = dt_safety × critical estimate
   double local_damping = 0.7;
   RotationIntegrator rotation = RotationIntegrator::kPfc;
+  // Neighbour builds also when they lower the mean cost per step (engine/rebuild_policy.hpp);
+  // false: only the half-skin rule, as before 2026-12-03 (each build re-estimates dt).
+  bool adaptive_rebuild = true;
   // preparation (PFC radius expansion, then gravity compaction)
   double initial_porosity = 0.5;      // of the grown spheres in their fill region (loose:
                                       // denser jams while growing and springs apart)

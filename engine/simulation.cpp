@@ -387,6 +387,7 @@ void Simulation::rebuild_neighbours() {
   wall_reference_.resize(walls_.size());
   for (Index w = 0; w < nw; ++w) wall_reference_[w] = walls_[w].displacement;
   ++builds_;
+  rebuild_policy_.start(n, ball_contacts_.size());
   if (prepared_ && !settings_.fixed_dt) update_timestep();
 }
 
@@ -613,8 +614,20 @@ void Simulation::do_step() {
   // automatic timestep often enough that it never trails them by much.
   if (!settings_.fixed_dt && steps_ % kTimestepRefreshSteps == 0) update_timestep();
   const double half = 0.5 * skin_;
-  needs_rebuild_ = needs_rebuild_ || shift_since_build_ + growth_since_build() > half ||
-                   wall_shift2 > half * half;
+  const bool required = shift_since_build_ + growth_since_build() > half || wall_shift2 > half * half;
+  // The live lists were remade this step (by the force pass, the gather or the kernel's
+  // flat sequence): count them for the rebuild policy, serially, a few times a build.
+  if (refresh_live || make_flat) rebuild_policy_.live_count(live_candidates());
+  const bool pays = rebuild_policy_.step_taken() && settings_.adaptive_rebuild;
+  if (!needs_rebuild_ && !required && pays) ++early_builds_;
+  needs_rebuild_ = needs_rebuild_ || required || pays;
+}
+
+long Simulation::live_candidates() const {
+  const ContactList& c = ball_contacts_;
+  long n = 0;
+  for (std::size_t i = 0; i < c.live_a_end.size(); ++i) n += c.live_a_end[i] - c.a_first[i];
+  return n;
 }
 
 void Simulation::run(long steps) {

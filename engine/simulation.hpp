@@ -26,6 +26,7 @@
 #include "engine/rigid_rotation.hpp"
 #include "engine/servo.hpp"
 #include "engine/timed_split.hpp"
+#include "engine/rebuild_policy.hpp"
 #include "engine/timestep.hpp"
 #include "engine/walls.hpp"
 
@@ -52,6 +53,10 @@ struct SimulationSettings {
   // "Far candidates"): the same bits, less work; false evaluates every candidate,
   // for the test that checks the skip changes nothing.
   bool skip_far_candidates = true;
+  // Rebuild the neighbour list early when that lowers the mean cost per step
+  // (rebuild_policy.hpp): with a fixed dt the same bits, fewer live candidates; false
+  // keeps only the half-skin rule, for the test and the benchmark that compare them.
+  bool adaptive_rebuild = true;
   // Lanes of the SIMD kernel that evaluates a sphere scene's ball–ball contacts when
   // it has no dashpots (sphere_kernel.hpp): -1 the widest this CPU runs, 0 none (the
   // scalar pass), 4 AVX2, 8 AVX-512. Every choice gives the same bits.
@@ -135,6 +140,10 @@ class Simulation {
   void set_phase_timing(bool on);
   const PhaseTimes& phase_times() const { return phase_times_; }
   long neighbour_builds() const { return builds_; }
+  // Of those, the builds the rebuild policy asked for before the half-skin rule did.
+  long early_neighbour_builds() const { return early_builds_; }
+  // Ball–ball candidates on the live lists now: those the force pass evaluates.
+  long live_candidates() const;
   const SimulationSettings& settings() const { return settings_; }
   const BodyStore& bodies() const { return bodies_; }
   const BallStore& balls() const { return balls_; }
@@ -196,7 +205,8 @@ class Simulation {
   // m: the largest distance any ball has moved from reference_positions_ (the last
   // build), as of the last update of the positions; it bounds how far a gap can close.
   double shift_since_build_ = 0.0;
-  long steps_ = 0, builds_ = 0;
+  long steps_ = 0, builds_ = 0, early_builds_ = 0;
+  RebuildPolicy rebuild_policy_;  // early builds (adaptive_rebuild)
   bool prepared_ = false, friction_ = false, needs_rebuild_ = false, pairs_stale_ = true;
   bool all_spheres_ = false;  // ForceSettings::all_spheres, from refresh_all_spheres()
   int kernel_lanes_ = 0;      // ForceSettings::sphere_kernel_lanes of the last step
