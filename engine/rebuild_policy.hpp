@@ -5,10 +5,9 @@
 // cover above 2 × the largest shift of any ball since the build. One ball that moves
 // (a rattler, the bed under a sleeper, a bed relaxing from 10 g to 1 g) raises that
 // bound for every pair, and a bed that settles for tens of thousands of steps between
-// two half-skin builds ends up evaluating most of its candidates: a smoke-scale
-// Sample 1 box test (2,500 balls) had 77-100 % of its 7,526 candidates live while 7 %
-// touched, and every candidate live costs the Sample 1 bench bed 1.7 times the step
-// (`ballast bench-bed` with and without --test-all-candidates).
+// two half-skin builds ends up evaluating most of its candidates, and every candidate
+// live costs the Sample 1 bench bed 1.6 times the step (`ballast bench-bed` with and
+// without --test-all-candidates; docs/PERFORMANCE.md, "Rebuilding when it pays").
 //
 // A build resets the bound to zero and the live list to the touching candidates, and
 // costs a few tens of steps (RebuildPolicy::kBuildCostPerBall and
@@ -32,13 +31,14 @@ class RebuildPolicy {
  public:
   // One build (cell list, candidate search, history merge, build gaps, wall
   // candidates) costs about as much as evaluating this many live candidates per ball
-  // plus this many per candidate in the list. Measured on the Xeon VM against one
-  // extra live candidate in the force pass (17 ns a step on one thread, 8.5 ns on
-  // two): the Sample 1 bench bed (19,242 balls, 85,661 candidates) builds in 38 ms on
-  // one thread and 27 ms on two, 2.2 and 3.2 million evaluations; a loose falling
-  // cloud of 120 clumps (1,255 balls, a few hundred candidates) in about 1 ms, some
-  // 60,000. The mean cost per step is flat near the optimum, so a factor of 2 off
-  // changes little (docs/PERFORMANCE.md, "Rebuilding when it pays").
+  // plus this many per candidate in the list. On the Xeon VM one extra live candidate
+  // cost about 14 ns a step on one thread (the Sample 1 bench bed, 3,000 steps with and
+  // without --test-all-candidates: 2.97 and 1.84 ms a step), and the neighbour search,
+  // most of a build, 23 ms for the benchmark's clump bed of 19,242 balls and 50,485
+  // candidates (`ballast_bench --benchmark_filter=NeighbourSearch`): 1.6 million
+  // evaluations, against 2.0 million by these constants. The mean cost per step is
+  // flat near the optimum, so a factor of 2 off changes little
+  // (docs/PERFORMANCE.md, "Rebuilding when it pays").
   static constexpr double kBuildCostPerBall = 50.0;
   static constexpr double kBuildCostPerCandidate = 20.0;
 

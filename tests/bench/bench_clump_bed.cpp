@@ -7,10 +7,13 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <vector>
 
 #include "cases/bed.hpp"
+#include "engine/cell_list.hpp"
 #include "dense_bed.hpp"
 
 using namespace ballast;
@@ -81,6 +84,37 @@ BENCHMARK(ClumpBed)
     ->ArgNames({"threads", "full_rotation"})
     ->UseRealTime()
     ->MinTime(3.0)
+    ->Unit(benchmark::kMillisecond);
+
+// The neighbour search a build runs (cell list, then candidate pairs within
+// r_a + r_b + skin) on the same settled clump bed: most of a build's cost, which
+// RebuildPolicy (engine/rebuild_policy.hpp) weighs against the live candidates an
+// early build saves. Compare ms per build with the step of ClumpBed in the same run.
+void NeighbourSearch(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  omp_set_num_threads(threads);
+  const Simulation& sim = settled_clump_bed();
+  const BallStore& balls = sim.balls();
+  double max_radius = 0.0;
+  for (double r : balls.radius) max_radius = std::max(max_radius, r);
+  CellList cells;
+  std::vector<Index> a, b;
+  for (auto _ : state) {
+    cells.build(balls.position, sim.settings().domain_lo, sim.settings().domain_hi,
+                2.0 * max_radius + sim.skin());
+    find_candidate_pairs(cells, balls.position, balls.radius, balls.body, sim.skin(), a, b);
+    benchmark::DoNotOptimize(a.data());
+  }
+  state.counters["balls"] = balls.size();
+  state.counters["candidates"] = double(a.size());
+  omp_set_num_threads(omp_get_num_procs());
+}
+BENCHMARK(NeighbourSearch)
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("threads")
+    ->UseRealTime()
+    ->MinTime(2.0)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
