@@ -52,7 +52,7 @@ namespace {
 
 // A ball as the search reads it, copied in cell order so that the balls of a cell
 // are read from consecutive memory rather than gathered from the ball arrays one
-// cache line each (15 ns a distance test on the Sample 1 bed, most of it waiting).
+// cache line each.
 struct PackedBall {
   double x, y, z, r;
   Index ball, body;
@@ -70,10 +70,9 @@ std::vector<PackedBall> pack_by_cell(const CellList& cells, const std::vector<Ve
 }
 
 // Appends to `out` every ball b > a in the 27 cells around ball a that is within
-// reach and belongs to another body. Branch-free: every ball of a cell is written to
-// the next slot and the slot advances by the test's 0/1 (which of a cell's balls
-// pass follows no pattern a predictor could learn, and a bisection for b > a per
-// cell cost more than the tests it saved).
+// reach and belongs to another body. Branch-free: every ball of a row of cells is
+// written to the next slot and the slot advances by the test's 0/1, since which of
+// them pass follows no pattern a predictor could learn.
 void scan_partners(const CellList& cells, const std::vector<PackedBall>& packed, const Vec3& xa,
                    double ra, Index body_a, double skin, Index a, std::vector<Index>& out) {
   const auto c = cells.coords_of(xa);
@@ -122,7 +121,8 @@ void find_candidate_pairs(const CellList& cells, const std::vector<Vec3>& positi
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num(), team = omp_get_num_threads();
-    const Index lo = Index(std::int64_t(n) * t / team), hi = Index(std::int64_t(n) * (t + 1) / team);
+    const Index lo = Index(std::int64_t(n) * t / team),
+                hi = Index(std::int64_t(n) * (t + 1) / team);
     std::vector<Index>& pa = part_a[t];
     std::vector<Index>& pb = part_b[t];
     for (Index a = lo; a < hi; ++a) {

@@ -70,7 +70,6 @@ class RebuildPolicy {
 
   double build_cost() const { return cost_; }  // in live-candidate evaluations
   long steps_since_build() const { return steps_; }
-  long base() const { return base_; }
 
  private:
   double cost_ = 0.0;        // one build, in live-candidate evaluations

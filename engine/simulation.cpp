@@ -578,8 +578,8 @@ void Simulation::do_step() {
       p.integrate += t3 - t2;
       phase_end_[me] = t3;
       // The join is known after the region; the main thread fills it in there.
-      p.per_step.push_back({float(t0 - region_start), float(t1 - t0), float(t2 - t1),
-                            float(t3 - t2), 0.0f});
+      p.per_step.push_back(
+          {float(t0 - region_start), float(t1 - t0), float(t2 - t1), float(t3 - t2), 0.0f});
     }
   }
   if (timing) {
@@ -614,7 +614,8 @@ void Simulation::do_step() {
   // automatic timestep often enough that it never trails them by much.
   if (!settings_.fixed_dt && steps_ % kTimestepRefreshSteps == 0) update_timestep();
   const double half = 0.5 * skin_;
-  const bool required = shift_since_build_ + growth_since_build() > half || wall_shift2 > half * half;
+  const bool required =
+      shift_since_build_ + growth_since_build() > half || wall_shift2 > half * half;
   // The live lists were remade this step (by the force pass, the gather or the kernel's
   // flat sequence): count them for the rebuild policy, serially, a few times a build.
   if (refresh_live || make_flat) rebuild_policy_.live_count(live_candidates());

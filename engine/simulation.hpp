@@ -23,10 +23,10 @@
 #include "engine/material.hpp"
 #include "engine/pair_table.hpp"
 #include "engine/phase_times.hpp"
+#include "engine/rebuild_policy.hpp"
 #include "engine/rigid_rotation.hpp"
 #include "engine/servo.hpp"
 #include "engine/timed_split.hpp"
-#include "engine/rebuild_policy.hpp"
 #include "engine/timestep.hpp"
 #include "engine/walls.hpp"
 

@@ -5,6 +5,7 @@
 
 #include "cases/bed.hpp"
 #include "engine/state_hash.hpp"
+#include "settling_clump_bed.hpp"
 
 using namespace ballast;
 
@@ -95,15 +96,7 @@ std::uint64_t run_growing_clump_bed(bool skip_far_candidates) {
   // timestep each re-estimates dt: off, so that the two runs differ by the skip alone.
   const bool adaptive_rebuild = false;
   omp_set_num_threads(1);
-  BedOptions o;
-  o.count = 120;
-  o.length = 0.3;
-  o.width = 0.15;
-  o.clumps = ClumpParams{};
-  o.friction = 0.4;
-  o.damping_ratio = 0.1;
-  o.local_damping = 0.2;
-  o.gravity = Vec3(0, 0, -981.0);
+  BedOptions o = settling_clump_bed_options();
   o.skip_far_candidates = skip_far_candidates;
   o.adaptive_rebuild = adaptive_rebuild;
   Simulation sim = make_bed(o);

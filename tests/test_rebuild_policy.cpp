@@ -9,6 +9,7 @@
 #include "cases/bed.hpp"
 #include "engine/rebuild_policy.hpp"
 #include "engine/state_hash.hpp"
+#include "settling_clump_bed.hpp"
 
 using namespace ballast;
 
@@ -94,15 +95,7 @@ struct SettlingRun {
 // one of the start, so that a build cannot change the timestep.
 SettlingRun settle_clumps(bool adaptive_rebuild) {
   omp_set_num_threads(1);
-  BedOptions o;
-  o.count = 120;
-  o.length = 0.3;
-  o.width = 0.15;
-  o.clumps = ClumpParams{};
-  o.friction = 0.4;
-  o.damping_ratio = 0.1;
-  o.local_damping = 0.2;
-  o.gravity = Vec3(0, 0, -981.0);
+  BedOptions o = settling_clump_bed_options();
   Simulation probe = make_bed(o);
   probe.prepare();
   o.fixed_dt = probe.dt();
@@ -137,9 +130,10 @@ TEST(RebuildPolicy, EarlyBuildsLeaveTheMotionBitForBitAndShortenTheLiveLists) {
   EXPECT_GT(adaptive.builds, half_skin.builds);
   EXPECT_LT(adaptive.mean_live, 0.8 * half_skin.mean_live)
       << "adaptive " << adaptive.mean_live << ", half-skin " << half_skin.mean_live;
-  std::printf("mean live candidates a step: %.0f with early builds (%ld builds, %ld early), "
-              "%.0f with the half-skin rule alone (%ld builds)\n",
-              adaptive.mean_live, adaptive.builds, adaptive.early_builds, half_skin.mean_live,
-              half_skin.builds);
+  std::printf(
+      "mean live candidates a step: %.0f with early builds (%ld builds, %ld early), "
+      "%.0f with the half-skin rule alone (%ld builds)\n",
+      adaptive.mean_live, adaptive.builds, adaptive.early_builds, half_skin.mean_live,
+      half_skin.builds);
   omp_set_num_threads(omp_get_num_procs());
 }

@@ -1,7 +1,7 @@
 // Clump-bed throughput: 1,936 Table 2 Sample 1 clumps (about 19,000 balls; the
 // paper's sample has 1,770 and 17,642) in the 700 × 300 mm box, stepped on 1 and 2
-// threads with each rotation integrator. Compare ball_steps/s with DenseBed (spheres) from the same run: the
-// target is a clump-bed ball-step costing no more than 1.5× a sphere-bed one.
+// threads with each rotation integrator. Compare ball_steps/s with DenseBed (spheres) from the same
+// run: the target is a clump-bed ball-step costing no more than 1.5× a sphere-bed one.
 //
 //   build/tests/bench/ballast_bench --benchmark_filter='DenseBed|ClumpBed'
 #include <benchmark/benchmark.h>
@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "cases/bed.hpp"
-#include "engine/cell_list.hpp"
 #include "dense_bed.hpp"
+#include "engine/cell_list.hpp"
 
 using namespace ballast;
 
