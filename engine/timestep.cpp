@@ -1,7 +1,10 @@
 #include "engine/timestep.hpp"
 
+#include <omp.h>
+
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace ballast {
 
@@ -21,58 +24,76 @@ TimestepEstimate estimate_critical_timestep(const BallStore& balls, const BodySt
                                             const std::vector<Material>& materials,
                                             const std::vector<Wall>& walls, const ContactList& bc,
                                             const ContactList& wc, double damping_ratio) {
-  TimestepEstimate best;
-  best.critical = std::numeric_limits<double>::infinity();
+  // Every 100 steps (Simulation::kTimestepRefreshSteps), over every candidate: serial,
+  // it kept the other threads waiting (about 1 % of a smoke-scale Sample 1 box test's
+  // samples on two threads, docs/PERFORMANCE.md). Each thread keeps the first
+  // smallest body of a contiguous range of bodies, and the ranges are combined in
+  // order, so the result is the serial loop's (the first body with the smallest
+  // estimate) on any number of threads.
   const Index nb = bodies.size();
-  for (Index body = 0; body < nb; ++body) {
-    const Vec3 x = bodies.position[body];
-    Stiffness k, floor;
-    const Index first = bodies.first_ball[body], last = first + bodies.ball_count[body];
-    for (Index ball = first; ball < last; ++ball) {
-      const Material& m = materials[balls.material[ball]];
-      const Vec3 px = balls.position[ball];
-      const double r = balls.radius[ball];
-      // Floor: one contact with an identical ball, on the far side of this ball
-      // along x (a sphere's normal force then has no lever arm, as it should).
-      Stiffness one;
-      one.add(0.5 * m.kn, 0.5 * m.ks, (px - x) + r * Vec3::UnitX(), Vec3::UnitX());
-      floor.tran = std::max(floor.tran, one.tran);
-      floor.rot = std::max(floor.rot, one.rot);
-      const auto add_ball = [&](Index other) {
-        const Vec3 d = px - balls.position[other];
-        const double reach = r + balls.radius[other];
-        if (d.squaredNorm() >= reach * reach) return;
-        const Vec3 n = d.normalized();
-        const Material& mo = materials[balls.material[other]];
-        k.add(series_stiffness(m.kn, mo.kn), series_stiffness(m.ks, mo.ks), (px - x) - r * n, n);
-      };
-      for (Index c = bc.a_first[ball]; c < bc.a_first[ball + 1]; ++c) add_ball(bc.b[c]);
-      for (Index e = bc.b_first[ball]; e < bc.b_first[ball + 1]; ++e)
-        add_ball(bc.a[bc.b_contact[e]]);
-      for (Index c = wc.a_first[ball]; c < wc.a_first[ball + 1]; ++c) {
-        const Wall& w = walls[wc.b[c]];
-        const WallTouch t = touch_wall(w, px, r);
-        if (t.overlap <= 0.0) continue;
-        k.add(series_stiffness(m.kn, w.material.kn), series_stiffness(m.ks, w.material.ks),
-              t.point - x, t.normal);
+  std::vector<TimestepEstimate> per_thread;
+#pragma omp parallel
+  {
+#pragma omp single
+    per_thread.resize(omp_get_num_threads());
+    TimestepEstimate best;
+    best.critical = std::numeric_limits<double>::infinity();
+#pragma omp for schedule(static) nowait
+    for (Index body = 0; body < nb; ++body) {
+      const Vec3 x = bodies.position[body];
+      Stiffness k, floor;
+      const Index first = bodies.first_ball[body], last = first + bodies.ball_count[body];
+      for (Index ball = first; ball < last; ++ball) {
+        const Material& m = materials[balls.material[ball]];
+        const Vec3 px = balls.position[ball];
+        const double r = balls.radius[ball];
+        // Floor: one contact with an identical ball, on the far side of this ball
+        // along x (a sphere's normal force then has no lever arm, as it should).
+        Stiffness one;
+        one.add(0.5 * m.kn, 0.5 * m.ks, (px - x) + r * Vec3::UnitX(), Vec3::UnitX());
+        floor.tran = std::max(floor.tran, one.tran);
+        floor.rot = std::max(floor.rot, one.rot);
+        const auto add_ball = [&](Index other) {
+          const Vec3 d = px - balls.position[other];
+          const double reach = r + balls.radius[other];
+          if (d.squaredNorm() >= reach * reach) return;
+          const Vec3 n = d.normalized();
+          const Material& mo = materials[balls.material[other]];
+          k.add(series_stiffness(m.kn, mo.kn), series_stiffness(m.ks, mo.ks), (px - x) - r * n, n);
+        };
+        for (Index c = bc.a_first[ball]; c < bc.a_first[ball + 1]; ++c) add_ball(bc.b[c]);
+        for (Index e = bc.b_first[ball]; e < bc.b_first[ball + 1]; ++e)
+          add_ball(bc.a[bc.b_contact[e]]);
+        for (Index c = wc.a_first[ball]; c < wc.a_first[ball + 1]; ++c) {
+          const Wall& w = walls[wc.b[c]];
+          const WallTouch t = touch_wall(w, px, r);
+          if (t.overlap <= 0.0) continue;
+          k.add(series_stiffness(m.kn, w.material.kn), series_stiffness(m.ks, w.material.ks),
+                t.point - x, t.normal);
+        }
+      }
+      k.tran = std::max(k.tran, floor.tran);
+      k.rot = std::max(k.rot, floor.rot);
+      // Translation and rotation are coupled through the shear springs (a sphere's
+      // tangential contact mode has 1/m_eff = 1/m + r²/I), so the frequencies add:
+      // ω² = k_tran/m + k_rot/I_min. PFC takes min(t_tran, t_rot) instead; that let
+      // beds chatter at the Nyquist frequency (period-2 force flips) under local
+      // damping, so we keep the stricter sum.
+      const double w2_tran = k.tran / bodies.mass[body];
+      const double w2_rot = k.rot / bodies.inertia[body].minCoeff();
+      const double t = 1.0 / std::sqrt(w2_tran + w2_rot);
+      if (t < best.critical) {
+        best.critical = t;
+        best.limiting_body = body;
+        best.limited_by_rotation = w2_rot > w2_tran;
       }
     }
-    k.tran = std::max(k.tran, floor.tran);
-    k.rot = std::max(k.rot, floor.rot);
-    // Translation and rotation are coupled through the shear springs (a sphere's
-    // tangential contact mode has 1/m_eff = 1/m + r²/I), so the frequencies add:
-    // ω² = k_tran/m + k_rot/I_min. PFC takes min(t_tran, t_rot) instead; that let
-    // beds chatter at the Nyquist frequency (period-2 force flips) under local
-    // damping, so we keep the stricter sum.
-    const double w2_tran = k.tran / bodies.mass[body];
-    const double w2_rot = k.rot / bodies.inertia[body].minCoeff();
-    const double t = 1.0 / std::sqrt(w2_tran + w2_rot);
-    if (t < best.critical) {
-      best.critical = t;
-      best.limiting_body = body;
-      best.limited_by_rotation = w2_rot > w2_tran;
-    }
+    per_thread[omp_get_thread_num()] = best;
   }
+  TimestepEstimate best;
+  best.critical = std::numeric_limits<double>::infinity();
+  for (const TimestepEstimate& e : per_thread)
+    if (e.critical < best.critical) best = e;
   // A dashpot lowers leapfrog's stability limit from 2/ω to 2/ω·(√(1+β²) − β).
   if (damping_ratio > 0.0)
     best.critical *= std::sqrt(1.0 + damping_ratio * damping_ratio) - damping_ratio;

@@ -1,10 +1,14 @@
 // Critical timestep estimate and its report.
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
 #include <cmath>
 #include <sstream>
 
 #include "engine/errors.hpp"
+#include "engine/timestep.hpp"
+#include "settling_clump_bed.hpp"
 #include "test_helpers.hpp"
 
 using namespace ballast;
@@ -64,4 +68,47 @@ TEST(Timestep, StrictModeRefusesADtAboveCritical) {
   const Index mat = sim.add_material({1e8, 1e8, 0.0});
   sim.add_sphere(Vec3::Zero(), 0.02, 2600, mat);
   EXPECT_THROW(sim.prepare(), SetupError);
+}
+
+namespace {
+
+TimestepEstimate estimate_on(const Simulation& sim, int threads) {
+  omp_set_num_threads(threads);
+  const TimestepEstimate e =
+      estimate_critical_timestep(sim.balls(), sim.bodies(), sim.materials(), sim.walls(),
+                                 sim.ball_contacts(), sim.wall_contacts(), 0.1);
+  omp_set_num_threads(1);
+  return e;
+}
+
+}  // namespace
+
+// The estimate runs on the step's threads; each takes a range of bodies and the
+// ranges are combined in order, so it must be the serial loop's to the bit, body
+// and mode included, on any team (three threads: ranges of unequal length).
+TEST(Timestep, EstimateIsTheSameOnOneTwoAndThreeThreads) {
+  omp_set_num_threads(1);
+  Simulation sim = make_bed(settling_clump_bed_options());
+  while (sim.time() < 0.05) sim.step();  // fallen: in contact with each other and the walls
+  ASSERT_GT(sim.contacts().ball_contacts, 20);
+  const TimestepEstimate one = estimate_on(sim, 1);
+  ASSERT_TRUE(std::isfinite(one.critical));
+  ASSERT_NE(one.limiting_body, kNoIndex);
+  for (int threads : {2, 3}) {
+    const TimestepEstimate many = estimate_on(sim, threads);
+    EXPECT_EQ(many.critical, one.critical) << threads << " threads";
+    EXPECT_EQ(many.limiting_body, one.limiting_body) << threads << " threads";
+    EXPECT_EQ(many.limited_by_rotation, one.limited_by_rotation) << threads << " threads";
+  }
+}
+
+// Equal spheres apart from each other have equal estimates: the first body limits,
+// as in the serial loop, whichever thread's range holds the others.
+TEST(Timestep, ATieGoesToTheFirstBodyOnAnyTeam) {
+  SimulationSettings s = scenes::bare_settings();
+  Simulation sim(s);
+  const Index mat = sim.add_material({4e8, 4e8, 0.5});
+  for (int k = 0; k < 7; ++k) sim.add_sphere(Vec3(0.1 * k, 0, 0), 0.02, 2600, mat);
+  sim.prepare();
+  for (int threads : {1, 2, 3}) EXPECT_EQ(estimate_on(sim, threads).limiting_body, 0);
 }
