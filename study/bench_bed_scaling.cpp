@@ -16,7 +16,9 @@ void TurnTimes::add(double one, double many) {
   per_turn.push_back(one / many);
 }
 
-double TurnTimes::quantile(double q) const { return sample_quantile(per_turn, q); }
+double TurnTimes::quantile(double q) const {
+  return sample_quantile(per_turn, q);
+}
 
 bool ScalingRun::bit_identical() const {
   return !hash.empty() && std::all_of(hash.begin(), hash.end(),
@@ -49,17 +51,24 @@ ScalingRun interleaved_scaling(const Packing& packing, const BenchBedOptions& op
     omp_set_num_threads(c == 1 ? threads : 1);
     sims[std::size_t(c)].prepare();  // neighbour search and timestep check: set-up, not timed
   }
-  // The three ways to step, each for n steps, returning its wall time.
+  // The three ways to step, each for n steps, returning its wall time; the steal
+  // counters are read outside the timed part.
+  const auto metered = [](StealMeter& meter, const auto& work) {
+    meter.begin();
+    const double seconds = seconds_of(work);
+    meter.end();
+    return seconds;
+  };
   const auto one = [&](long n) {
     omp_set_num_threads(1);
-    return seconds_of([&] { sims[0].run(n); });
+    return metered(out.steal_one, [&] { sims[0].run(n); });
   };
   const auto team = [&](long n) {
     omp_set_num_threads(threads);
-    return seconds_of([&] { sims[1].run(n); });
+    return metered(out.steal_team, [&] { sims[1].run(n); });
   };
   const auto copies = [&](long n) {
-    return seconds_of([&] {
+    return metered(out.steal_copies, [&] {
 #pragma omp parallel num_threads(threads)
       {
         // Each copy's steps open their own region, of one thread (the study's jobs

@@ -26,6 +26,7 @@
 
 #include "cases/bench_bed.hpp"
 #include "cases/packing_file.hpp"
+#include "study/host_steal.hpp"
 
 namespace ballast {
 
@@ -50,6 +51,9 @@ struct ScalingRun {
   // One copy on one thread against T copies at once, one thread each, their time
   // divided by T: the throughput ratio, the host's bound.
   TurnTimes independent;
+  // The hypervisor's steal (host_steal.hpp) during each way's turns: the one-thread
+  // copy's, the T-thread copy's and the T copies'.
+  StealMeter steal_one, steal_team, steal_copies;
   // state_hash after the last step: the one-thread copy, the T-thread copy, then
   // the T independent copies.
   std::vector<unsigned long long> hash;

@@ -92,6 +92,11 @@ void run_scaling(const BenchBedArgs& a, const Packing& packing) {
         {"ratio", t.ratio()},
         {"per_turn_quartiles", {t.quantile(0.25), t.quantile(0.5), t.quantile(0.75)}}};
   };
+  // null where /proc/stat could not be read.
+  const auto share_json = [](const StealMeter& m) -> nlohmann::json {
+    if (const auto v = m.share()) return *v;
+    return nullptr;
+  };
   nlohmann::json hashes = nlohmann::json::array();
   for (unsigned long long h : s.hash) hashes.push_back(hex(h));
   if (a.json) {
@@ -107,6 +112,10 @@ void run_scaling(const BenchBedArgs& a, const Packing& packing) {
          {ball_steps / s.speedup.seconds_one, ball_steps / s.speedup.seconds_many}},
         {"speedup", times_json(s.speedup)},
         {"independent_copies", times_json(s.independent)},
+        {"host_steal_share",
+         {{"one_thread", share_json(s.steal_one)},
+          {"threads", share_json(s.steal_team)},
+          {"independent_copies", share_json(s.steal_copies)}}},
         {"state_hash", hashes},
         {"bit_identical", same}};
     std::cout << j.dump(2) << "\n";
@@ -122,6 +131,17 @@ void run_scaling(const BenchBedArgs& a, const Packing& packing) {
         "%.3f times one copy's throughput (per turn: quartiles %.3f, %.3f, %.3f)\n",
         threads, s.independent.ratio(), s.independent.quantile(0.25), s.independent.quantile(0.5),
         s.independent.quantile(0.75));
+    const auto pct = [](const StealMeter& m) -> std::string {
+      const auto v = m.share();
+      if (!v) return "unknown";
+      char text[32];
+      std::snprintf(text, sizeof text, "%.1f %%", 100.0 * *v);
+      return text;
+    };
+    std::printf(
+        "the hypervisor's steal in the same turns (/proc/stat), share of the time the vCPUs "
+        "wanted to run: 1 thread %s, %d threads %s, the copies %s\n",
+        pct(s.steal_one).c_str(), threads, pct(s.steal_team).c_str(), pct(s.steal_copies).c_str());
     std::printf("state hashes (1 thread, %d threads, the copies): %s; %s\n", threads,
                 hashes.dump().c_str(), same ? "bit-identical" : "NOT bit-identical");
   }

@@ -303,6 +303,12 @@ class BenchBedCommand(unittest.TestCase):
                                    delta=1e-12 * t["ratio"])
             q = t["per_turn_quartiles"]
             self.assertTrue(0.0 < q[0] <= q[1] <= q[2], q)
+        # The hypervisor's steal during each kind of turn: a share of the time the vCPUs
+        # wanted to run, or null (no /proc/stat, or turns too short for a 10 ms tick).
+        steal = s["host_steal_share"]
+        self.assertEqual(set(steal), {"one_thread", "threads", "independent_copies"})
+        for v in steal.values():
+            self.assertTrue(v is None or 0.0 <= v <= 1.0, steal)
         # The ball-steps/s figures are the speed-up's times: 41 balls x 400 steps.
         one, many = s["speedup"]["seconds"]
         self.assertAlmostEqual(s["ball_steps_per_s"][0], 41 * 400 / one, delta=1e-9 * 41 * 400 / one)

@@ -17,7 +17,8 @@
    our speed-up from 1 to 2 threads measured in one process, copies of the bed
    taking turns every twentieth of the steps so that the host's drift cancels,
    beside what 2 independent copies at once gave in the same turns (the host's
-   bound); its copies must end in the same state as the runs above.
+   bound), and the hypervisor's steal during each kind of turn (study/host_steal.hpp);
+   its copies must end in the same state as the runs above.
 4. Exit 1 if a convention, the bit identity or the physics cross-check fails.
 """
 import argparse
@@ -36,6 +37,14 @@ import yade_peer  # noqa: E402
 from packing import read_packing  # noqa: E402
 from physics import Physics  # noqa: E402
 
+
+
+def steal_text(share):
+    """bench-bed --scaling's host_steal_share as '1 thread a %, 2 threads b %, copies c %'."""
+    def pct(v):
+        return "unknown" if v is None else f"{100 * v:.1f} %"
+    return (f"1 thread {pct(share['one_thread'])}, 2 threads {pct(share['threads'])}, "
+            f"copies {pct(share['independent_copies'])}")
 
 def run_one(code, parallel, args, bed, packing, p, work):
     """One timed run; returns its summary record."""
@@ -73,7 +82,8 @@ def bench_bed(bed, path, steps, args, work):
         scaling.append(s)
         print(f"  round {k + 1}: ballast 1 against 2 threads in one process, turns of {chunk} "
               f"steps: speed-up {s['speedup']['ratio']:.3f}; 2 independent copies "
-              f"{s['independent_copies']['ratio']:.3f}", flush=True)
+              f"{s['independent_copies']['ratio']:.3f}; the host's steal "
+              f"{steal_text(s['host_steal_share'])}", flush=True)
     median = {r: statistics.median(x["ball_steps_per_s"] for x in records[r]) for r in runs}
     print(f"\n{bed}: ball-steps/s, median of {args.rounds} rounds")
     print("| code | 1 thread / process | 2 threads / ranks | 2 / 1 | ours / this, 1 | ours / this, 2 |")
@@ -94,7 +104,8 @@ def bench_bed(bed, path, steps, args, work):
     print(f"ours, 2 / 1 thread in one process (bench-bed --scaling), per round: "
           f"{', '.join(f'{v:.2f}' for v in speedup)} (median {statistics.median(speedup):.2f}); "
           f"the host's bound, 2 independent copies at once: "
-          f"{', '.join(f'{v:.2f}' for v in bound)} (median {statistics.median(bound):.2f})")
+          f"{', '.join(f'{v:.2f}' for v in bound)} (median {statistics.median(bound):.2f}); "
+          f"the host's steal, per round: {'; '.join(steal_text(x['host_steal_share']) for x in scaling)}")
     # The same ratios round by round: the runs of one round are minutes apart, so
     # slow drift on the host cancels in them, and their spread shows how far the
     # host moved a ratio within this run.
