@@ -18,6 +18,47 @@ struct Stiffness {
   }
 };
 
+// The body's contact stiffnesses, translational and rotational (about its centre),
+// from the candidates that touch now, at least one contact with an identical ball.
+Stiffness body_stiffness(Index body, const BallStore& balls, const BodyStore& bodies,
+                         const std::vector<Material>& materials, const std::vector<Wall>& walls,
+                         const ContactList& bc, const ContactList& wc) {
+  const Vec3 x = bodies.position[body];
+  Stiffness k, floor;
+  const Index first = bodies.first_ball[body], last = first + bodies.ball_count[body];
+  for (Index ball = first; ball < last; ++ball) {
+    const Material& m = materials[balls.material[ball]];
+    const Vec3 px = balls.position[ball];
+    const double r = balls.radius[ball];
+    // Floor: one contact with an identical ball, on the far side of this ball
+    // along x (a sphere's normal force then has no lever arm, as it should).
+    Stiffness one;
+    one.add(0.5 * m.kn, 0.5 * m.ks, (px - x) + r * Vec3::UnitX(), Vec3::UnitX());
+    floor.tran = std::max(floor.tran, one.tran);
+    floor.rot = std::max(floor.rot, one.rot);
+    const auto add_ball = [&](Index other) {
+      const Vec3 d = px - balls.position[other];
+      const double reach = r + balls.radius[other];
+      if (d.squaredNorm() >= reach * reach) return;
+      const Vec3 n = d.normalized();
+      const Material& mo = materials[balls.material[other]];
+      k.add(series_stiffness(m.kn, mo.kn), series_stiffness(m.ks, mo.ks), (px - x) - r * n, n);
+    };
+    for (Index c = bc.a_first[ball]; c < bc.a_first[ball + 1]; ++c) add_ball(bc.b[c]);
+    for (Index e = bc.b_first[ball]; e < bc.b_first[ball + 1]; ++e) add_ball(bc.a[bc.b_contact[e]]);
+    for (Index c = wc.a_first[ball]; c < wc.a_first[ball + 1]; ++c) {
+      const Wall& w = walls[wc.b[c]];
+      const WallTouch t = touch_wall(w, px, r);
+      if (t.overlap <= 0.0) continue;
+      k.add(series_stiffness(m.kn, w.material.kn), series_stiffness(m.ks, w.material.ks),
+            t.point - x, t.normal);
+    }
+  }
+  k.tran = std::max(k.tran, floor.tran);
+  k.rot = std::max(k.rot, floor.rot);
+  return k;
+}
+
 }  // namespace
 
 TimestepEstimate estimate_critical_timestep(const BallStore& balls, const BodyStore& bodies,
@@ -40,40 +81,7 @@ TimestepEstimate estimate_critical_timestep(const BallStore& balls, const BodySt
     best.critical = std::numeric_limits<double>::infinity();
 #pragma omp for schedule(static) nowait
     for (Index body = 0; body < nb; ++body) {
-      const Vec3 x = bodies.position[body];
-      Stiffness k, floor;
-      const Index first = bodies.first_ball[body], last = first + bodies.ball_count[body];
-      for (Index ball = first; ball < last; ++ball) {
-        const Material& m = materials[balls.material[ball]];
-        const Vec3 px = balls.position[ball];
-        const double r = balls.radius[ball];
-        // Floor: one contact with an identical ball, on the far side of this ball
-        // along x (a sphere's normal force then has no lever arm, as it should).
-        Stiffness one;
-        one.add(0.5 * m.kn, 0.5 * m.ks, (px - x) + r * Vec3::UnitX(), Vec3::UnitX());
-        floor.tran = std::max(floor.tran, one.tran);
-        floor.rot = std::max(floor.rot, one.rot);
-        const auto add_ball = [&](Index other) {
-          const Vec3 d = px - balls.position[other];
-          const double reach = r + balls.radius[other];
-          if (d.squaredNorm() >= reach * reach) return;
-          const Vec3 n = d.normalized();
-          const Material& mo = materials[balls.material[other]];
-          k.add(series_stiffness(m.kn, mo.kn), series_stiffness(m.ks, mo.ks), (px - x) - r * n, n);
-        };
-        for (Index c = bc.a_first[ball]; c < bc.a_first[ball + 1]; ++c) add_ball(bc.b[c]);
-        for (Index e = bc.b_first[ball]; e < bc.b_first[ball + 1]; ++e)
-          add_ball(bc.a[bc.b_contact[e]]);
-        for (Index c = wc.a_first[ball]; c < wc.a_first[ball + 1]; ++c) {
-          const Wall& w = walls[wc.b[c]];
-          const WallTouch t = touch_wall(w, px, r);
-          if (t.overlap <= 0.0) continue;
-          k.add(series_stiffness(m.kn, w.material.kn), series_stiffness(m.ks, w.material.ks),
-                t.point - x, t.normal);
-        }
-      }
-      k.tran = std::max(k.tran, floor.tran);
-      k.rot = std::max(k.rot, floor.rot);
+      const Stiffness k = body_stiffness(body, balls, bodies, materials, walls, bc, wc);
       // Translation and rotation are coupled through the shear springs (a sphere's
       // tangential contact mode has 1/m_eff = 1/m + r²/I), so the frequencies add:
       // ω² = k_tran/m + k_rot/I_min. PFC takes min(t_tran, t_rot) instead; that let

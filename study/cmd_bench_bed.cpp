@@ -92,7 +92,7 @@ void run_scaling(const BenchBedArgs& a, const Packing& packing) {
         {"ratio", t.ratio()},
         {"per_turn_quartiles", {t.quantile(0.25), t.quantile(0.5), t.quantile(0.75)}}};
   };
-  // null where /proc/stat could not be read.
+  // null where /proc/stat could not be read or no busy tick (10 ms) passed in the turns.
   const auto share_json = [](const StealMeter& m) -> nlohmann::json {
     if (const auto v = m.share()) return *v;
     return nullptr;

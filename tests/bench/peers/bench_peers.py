@@ -38,13 +38,13 @@ from packing import read_packing  # noqa: E402
 from physics import Physics  # noqa: E402
 
 
-
 def steal_text(share):
     """bench-bed --scaling's host_steal_share as '1 thread a %, 2 threads b %, copies c %'."""
     def pct(v):
         return "unknown" if v is None else f"{100 * v:.1f} %"
     return (f"1 thread {pct(share['one_thread'])}, 2 threads {pct(share['threads'])}, "
             f"copies {pct(share['independent_copies'])}")
+
 
 def run_one(code, parallel, args, bed, packing, p, work):
     """One timed run; returns its summary record."""
