@@ -123,14 +123,19 @@ void find_candidate_pairs(const CellList& cells, const std::vector<Vec3>& positi
     const int t = omp_get_thread_num(), team = omp_get_num_threads();
     const Index lo = Index(std::int64_t(n) * t / team),
                 hi = Index(std::int64_t(n) * (t + 1) / team);
-    std::vector<Index>& pa = part_a[t];
-    std::vector<Index>& pb = part_b[t];
+    // The thread's lists live on its own stack until the end: the headers of
+    // part_a[t] and part_b[t] share cache lines with the other threads' ones, and
+    // every resize writes the header, so filling them in place made the two cores
+    // trade those lines thousands of times a build (2 threads took as long as 1).
+    std::vector<Index> pa, pb;
     for (Index a = lo; a < hi; ++a) {
       const std::size_t first = pb.size();
       scan_partners(cells, packed, positions[a], radii[a], body[a], skin, a, pb);
       std::sort(pb.begin() + std::ptrdiff_t(first), pb.end());
       pa.resize(pb.size(), a);
     }
+    part_a[t] = std::move(pa);
+    part_b[t] = std::move(pb);
   }
   std::size_t total = 0;
   for (const auto& p : part_a) total += p.size();
