@@ -1,10 +1,10 @@
 #include "engine/cell_list.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+
+#include "engine/ordered_pairs.hpp"
 
 namespace ballast {
 
@@ -110,43 +110,18 @@ void scan_partners(const CellList& cells, const std::vector<PackedBall>& packed,
 void find_candidate_pairs(const CellList& cells, const std::vector<Vec3>& positions,
                           const std::vector<double>& radii, const std::vector<Index>& body,
                           double skin, std::vector<Index>& out_a, std::vector<Index>& out_b) {
-  const Index n = static_cast<Index>(positions.size());
   const std::vector<PackedBall> packed = pack_by_cell(cells, positions, radii, body);
-  // One scan: each thread takes a contiguous range of balls and lists their pairs in
-  // its own vectors, which are then joined in thread order, so the result is the
-  // serial one whatever the thread count. (A count pass and a fill pass, each ball
-  // writing its own slice, scanned the cells twice.)
-  const int threads = omp_get_max_threads();
-  std::vector<std::vector<Index>> part_a(threads), part_b(threads);
-#pragma omp parallel num_threads(threads)
-  {
-    const int t = omp_get_thread_num(), team = omp_get_num_threads();
-    const Index lo = Index(std::int64_t(n) * t / team),
-                hi = Index(std::int64_t(n) * (t + 1) / team);
-    // The thread's lists live on its own stack until the end: the headers of
-    // part_a[t] and part_b[t] share cache lines with the other threads' ones, and
-    // every resize writes the header, so filling them in place made the two cores
-    // trade those lines thousands of times a build (2 threads took as long as 1).
-    std::vector<Index> pa, pb;
+  // One scan (a count pass and a fill pass, each ball writing its own slice,
+  // scanned the cells twice).
+  const auto scan = [&](Index lo, Index hi, std::vector<Index>& pa, std::vector<Index>& pb) {
     for (Index a = lo; a < hi; ++a) {
       const std::size_t first = pb.size();
       scan_partners(cells, packed, positions[a], radii[a], body[a], skin, a, pb);
       std::sort(pb.begin() + std::ptrdiff_t(first), pb.end());
       pa.resize(pb.size(), a);
     }
-    part_a[t] = std::move(pa);
-    part_b[t] = std::move(pb);
-  }
-  std::size_t total = 0;
-  for (const auto& p : part_a) total += p.size();
-  out_a.clear();
-  out_b.clear();
-  out_a.reserve(total);
-  out_b.reserve(total);
-  for (int t = 0; t < threads; ++t) {
-    out_a.insert(out_a.end(), part_a[t].begin(), part_a[t].end());
-    out_b.insert(out_b.end(), part_b[t].begin(), part_b[t].end());
-  }
+  };
+  collect_pairs_in_order(Index(positions.size()), scan, out_a, out_b);
 }
 
 void brute_force_pairs(const std::vector<Vec3>& positions, const std::vector<double>& radii,

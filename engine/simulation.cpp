@@ -365,17 +365,8 @@ void Simulation::rebuild_neighbours() {
   find_candidate_pairs(cells_, balls_.position, balls_.radius, balls_.body, skin_, a, b);
   ball_contacts_.rebuild(std::move(a), std::move(b), friction_, n, true);
 
-  // Ball–wall candidates, in ball order then wall order (so the keys come sorted).
   std::vector<Index> wa, wb;
-  const Index nw = static_cast<Index>(walls_.size());
-  if (nw > 0) {
-    for (Index k = 0; k < n; ++k)
-      for (Index w = 0; w < nw; ++w)
-        if (touch_wall(walls_[w], balls_.position[k], balls_.radius[k] + skin_).overlap > 0.0) {
-          wa.push_back(k);
-          wb.push_back(w);
-        }
-  }
+  if (!walls_.empty()) find_wall_candidates(walls_, balls_.position, balls_.radius, skin_, wa, wb);
   wall_contacts_.rebuild(std::move(wa), std::move(wb), friction_, n, false);
   a_side_.assign(bodies_.size(), Wrench{Vec3::Zero(), Vec3::Zero()});
 
@@ -385,7 +376,7 @@ void Simulation::rebuild_neighbours() {
   scale_at_build_ = size_scale_;
   needs_rebuild_ = false;
   wall_reference_.resize(walls_.size());
-  for (Index w = 0; w < nw; ++w) wall_reference_[w] = walls_[w].displacement;
+  for (Index w = 0; w < Index(walls_.size()); ++w) wall_reference_[w] = walls_[w].displacement;
   ++builds_;
   rebuild_policy_.start(n, ball_contacts_.size());
   if (prepared_ && !settings_.fixed_dt) update_timestep();

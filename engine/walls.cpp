@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "engine/errors.hpp"
+#include "engine/ordered_pairs.hpp"
 
 namespace ballast {
 
@@ -31,6 +32,21 @@ WallTouch touch_wall(const Wall& w, const Vec3& x, double r) {
   Vec3 p = x;
   p[axis] = n[axis] < 0 ? w.lo[axis] : w.hi[axis];
   return {r + depth, n, p};
+}
+
+void find_wall_candidates(const std::vector<Wall>& walls, const std::vector<Vec3>& positions,
+                          const std::vector<double>& radii, double skin,
+                          std::vector<Index>& out_ball, std::vector<Index>& out_wall) {
+  const Index nw = static_cast<Index>(walls.size());
+  const auto scan = [&](Index lo, Index hi, std::vector<Index>& balls, std::vector<Index>& ws) {
+    for (Index k = lo; k < hi; ++k)
+      for (Index w = 0; w < nw; ++w)
+        if (touch_wall(walls[w], positions[k], radii[k] + skin).overlap > 0.0) {
+          balls.push_back(k);
+          ws.push_back(w);
+        }
+  };
+  collect_pairs_in_order(static_cast<Index>(positions.size()), scan, out_ball, out_wall);
 }
 
 void advance_wall(Wall& w, double dt) {

@@ -44,6 +44,13 @@ struct WallTouch {
 // loop (skin = 0). Returns overlap = r + skin - distance, so > 0 means "within".
 WallTouch touch_wall(const Wall& w, const Vec3& x, double r);
 
+// Ball–wall candidates: every (ball, wall) with the ball within its radius + skin
+// of the wall, in ball order then wall order (so the keys come sorted). Built in
+// parallel, the same lists on any number of threads.
+void find_wall_candidates(const std::vector<Wall>& walls, const std::vector<Vec3>& positions,
+                          const std::vector<double>& radii, double skin,
+                          std::vector<Index>& out_ball, std::vector<Index>& out_wall);
+
 // Moves the wall by velocity·dt.
 void advance_wall(Wall& w, double dt);
 
