@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -449,8 +450,27 @@ void Simulation::drive_walls() {
   }
 }
 
+Vec3 Simulation::wall_force(Index w) const {
+  require_setup(w >= 0 && w < Index(walls_.size()), "wall index", w,
+                "0 .. " + std::to_string(Index(walls_.size()) - 1));
+  if (wall_forces_summed_) return wall_force_[w];
+  Vec3 f = Vec3::Zero();
+  const Wrench* const wrench = wall_contacts_.b_wrench.data();
+  const Index* const wall = wall_contacts_.b.data();
+  for (Index c = 0; c < wall_contacts_.size(); ++c)
+    if (wall[c] == w) f += wrench[c].force;
+  return f;
+}
+
 double Simulation::move_walls() {
-  sum_wall_forces();
+  // Only a moving wall needs its force every step. In a fixed box (a settling bed,
+  // the peer benchmark) the sums were a loop over every wall candidate on the main
+  // thread while the others waited, reading on two threads half the wrenches from
+  // the other core (docs/PERFORMANCE.md, "Wall forces when asked for"). Without
+  // them drive_walls books no work (every velocity is zero) and moves nothing.
+  wall_forces_summed_ = std::any_of(walls_.begin(), walls_.end(),
+                                    [](const Wall& w) { return w.motion != WallMotion::Fixed; });
+  if (wall_forces_summed_) sum_wall_forces();
   drive_walls();
   double shift2 = 0.0;
   for (Index w = 0; w < static_cast<Index>(walls_.size()); ++w)

@@ -152,8 +152,10 @@ class Simulation {
   const std::vector<Material>& materials() const { return materials_; }
   const ContactList& ball_contacts() const { return ball_contacts_; }
   const ContactList& wall_contacts() const { return wall_contacts_; }
-  // Force the balls exert on wall w at the last step, N.
-  const Vec3& wall_force(Index w) const { return wall_force_[w]; }
+  // Force the balls exert on wall w at the last step, N. Summed every step while a
+  // wall moves (its work, a servo's measurement); otherwise here, when asked for,
+  // in the same order, so the same bits.
+  Vec3 wall_force(Index w) const;
 
   EnergyBudget energy() const;
   ContactStats contacts() const;
@@ -194,7 +196,8 @@ class Simulation {
   TimedSplit contact_split_, integrate_split_;
   std::vector<Vec3> reference_positions_;  // ball positions at the last neighbour build
   std::vector<Vec3> wall_reference_;       // wall displacements at the last build
-  std::vector<Vec3> wall_force_;
+  std::vector<Vec3> wall_force_;           // current only while wall_forces_summed_
+  bool wall_forces_summed_ = false;
   double wall_work_ = 0.0;
   // Radius expansion (set_size_scale): full-size geometry, kept only once used.
   std::vector<double> full_radius_;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "engine/errors.hpp"
 #include "test_helpers.hpp"
 
 using namespace ballast;
@@ -79,6 +80,41 @@ TEST(Walls, PrescribedVelocityMovesTheWallExactly) {
   sim.set_wall_velocity(w, Vec3(0, 0, 0.25));
   sim.run(1000);
   EXPECT_NEAR(sim.walls()[w].point.z(), 0.25 * 1000 * 1e-5, 1e-12);
+}
+
+// Three spheres at rest on a fixed base under gravity, beside a fixed side wall.
+// With `moving_far_wall`, a wall far from every ball moves, so that the engine sums
+// every wall's force each step instead of when asked for.
+Simulation resting_spheres(bool moving_far_wall) {
+  SimulationSettings s = scenes::bare_settings();
+  s.gravity = Vec3(0, 0, -9.81);
+  s.local_damping = 0.7;
+  s.fixed_dt = 1e-5;  // the far wall's extra neighbour builds then change no bit
+  Simulation sim(s);
+  const Material m{1e7, 1e7, 0.3};
+  const Index mat = sim.add_material(m);
+  sim.add_wall(scenes::plane_wall(Vec3::Zero(), Vec3::UnitZ(), m));
+  sim.add_wall(scenes::plane_wall(Vec3(-0.02, 0, 0), Vec3::UnitX(), m));
+  const Index far = sim.add_wall(scenes::plane_wall(Vec3(0.9, 0, 0), -Vec3::UnitX(), m));
+  if (moving_far_wall) sim.set_wall_velocity(far, Vec3(-1e-3, 0, 0));
+  for (int k = 0; k < 3; ++k) sim.add_sphere(Vec3(0.05 * k, 0, 0.02), 0.02, 2600, mat);
+  return sim;
+}
+
+TEST(Walls, AFixedWallsForceIsTheSameSummedEachStepOrWhenAskedFor) {
+  Simulation asked = resting_spheres(false), summed = resting_spheres(true);
+  asked.run(20000);
+  summed.run(20000);
+  double weight = 0.0;
+  for (Index b = 0; b < asked.bodies().size(); ++b) weight += 9.81 * asked.bodies().mass[b];
+  for (Index w = 0; w < 3; ++w)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(asked.wall_force(w)[k], summed.wall_force(w)[k]) << "wall " << w << " axis " << k;
+  // At rest the base carries the weight; the side wall and the far wall nothing.
+  EXPECT_NEAR(-asked.wall_force(0).z(), weight, 1e-3 * weight);
+  EXPECT_NEAR(asked.wall_force(1).norm(), 0.0, 1e-3 * weight);
+  EXPECT_EQ(asked.wall_force(2).norm(), 0.0);
+  EXPECT_THROW(asked.wall_force(3), SetupError);
 }
 
 TEST(Walls, SolidBoxTouchesAtFacesEdgesAndCorners) {
