@@ -111,8 +111,8 @@ void find_candidate_pairs(const CellList& cells, const std::vector<Vec3>& positi
                           const std::vector<double>& radii, const std::vector<Index>& body,
                           double skin, std::vector<Index>& out_a, std::vector<Index>& out_b) {
   const std::vector<PackedBall> packed = pack_by_cell(cells, positions, radii, body);
-  // One scan (a count pass and a fill pass, each ball writing its own slice,
-  // scanned the cells twice).
+  // One scan per ball, appending as it goes (a count pass and then a fill pass into
+  // per-ball slices scanned the cells twice).
   const auto scan = [&](Index lo, Index hi, std::vector<Index>& pa, std::vector<Index>& pb) {
     for (Index a = lo; a < hi; ++a) {
       const std::size_t first = pb.size();

@@ -465,8 +465,8 @@ Vec3 Simulation::wall_force(Index w) const {
 double Simulation::move_walls() {
   // Only a moving wall needs its force every step. In a fixed box (a settling bed,
   // the peer benchmark) the sums were a loop over every wall candidate on the main
-  // thread while the others waited, reading on two threads half the wrenches from
-  // the other core (docs/PERFORMANCE.md, "Wall forces when asked for"). Without
+  // thread, inside its share of the integration, reading on two threads half the
+  // wrenches from the other core (docs/PERFORMANCE.md, "Wall forces when asked for"). Without
   // them drive_walls books no work (every velocity is zero) and moves nothing.
   wall_forces_summed_ = std::any_of(walls_.begin(), walls_.end(),
                                     [](const Wall& w) { return w.motion != WallMotion::Fixed; });
