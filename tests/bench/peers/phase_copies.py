@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Which phase of our step loses from 1 to 2 threads, and whether 2 independent copies
-lose the same there (docs/PERFORMANCE.md, "What the integration loses on two threads").
+lose the same there (docs/PERFORMANCE.md,
+"Where the sphere step loses, phase by phase").
 
     tests/bench/peers/phase_copies.py [build/peers/spheres.txt] [--steps 20000] [--rounds 3]
 
@@ -10,7 +11,8 @@ host gives two independent processes: the host's bound, per phase); two threads.
 prints each phase's median time per step (the force pass; the walls and the
 integration) and two speed-ups per phase against the lone thread:
   - 2 threads: lone time / the slower thread's time;
-  - the copies: 2 x lone time / the copies' mean time (two copies do twice the work).
+  - the copies: 2 x lone time / the copies' mean time (two copies do twice the work);
+    the copies are pinned to vCPUs 0 and 1 (taskset), in that order in the table.
 A phase whose 2-thread speed-up is as far below 2 as the copies' is bound by what the
 two cores share on this host (caches, memory, the hypervisor), not by our threads'
 waits or split. The hypervisor's steal (/proc/stat) over each way is printed beside
@@ -54,9 +56,12 @@ def medians(output):
     return threads
 
 
-def launch(command, threads):
+def launch(command, threads, cpu=None):
+    """Starts a run; `cpu`: pinned to that vCPU (taskset), so that two copies report
+    one vCPU each."""
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
-    return subprocess.Popen(command + ["--threads", str(threads)], stdout=subprocess.PIPE,
+    pin = ["taskset", "-c", str(cpu)] if cpu is not None else []
+    return subprocess.Popen(pin + command + ["--threads", str(threads)], stdout=subprocess.PIPE,
                             stderr=subprocess.STDOUT, text=True, env=env)
 
 
@@ -90,14 +95,14 @@ def main():
                "--dt", repr(p.dt), "--density", repr(p.density)]
     print(f"{os.path.basename(args.bed)}, {args.steps} steps: median µs per step of each phase; "
           "speed-up against the lone thread")
-    print("| round | phase | 1 thread | copies (each) | 2 threads (each) | copies' speed-up "
+    print("| round | phase | 1 thread | copies (vCPU 0, 1) | 2 threads (each) | copies' speed-up "
           "| 2 threads' speed-up | steal: alone, copies, 2 threads |")
     print("|---|---|---|---|---|---|---|---|")
     ratios = {name: ([], []) for name in PHASES}
     for r in range(1, args.rounds + 1):
         alone, s1 = with_steal(lambda: finish(launch(command, 1)))
-        copies, sc = with_steal(lambda: [finish(c)[0] for c in [launch(command, 1),
-                                                               launch(command, 1)]])
+        copies, sc = with_steal(lambda: [finish(c)[0] for c in [launch(command, 1, cpu=0),
+                                                               launch(command, 1, cpu=1)]])
         two, s2 = with_steal(lambda: finish(launch(command, 2)))
         for name in PHASES:
             lone = alone[0][name]
