@@ -25,9 +25,8 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import ballast_peer  # noqa: E402
 from physics import Physics  # noqa: E402
-
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 # The two passes' medians per thread, and the median whole step (the same for all
 # threads of a run: it holds the waits and the serial part as well).
 PHASES = ("contacts", "walls and integrate", "step")
@@ -82,17 +81,13 @@ def with_steal(run):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("bed", nargs="?", default=os.path.join(ROOT, "build", "peers", "spheres.txt"))
+    ap.add_argument("bed", nargs="?", default=ballast_peer.SPHERE_BED)
     ap.add_argument("--steps", type=int, default=20000)
     ap.add_argument("--rounds", type=int, default=3)
     args = ap.parse_args()
-    if not os.path.exists(args.bed):
-        sys.exit(f"phase_copies.py: no bed at {args.bed} (run make bench-peers once)")
-    ballast = os.environ.get("BALLAST", os.path.join(ROOT, "build", "study", "ballast"))
-    p = Physics()
-    command = [ballast, "bench-bed", args.bed, "--steps", str(args.steps), "--phase-times",
-               "--stiffness", repr(p.stiffness), "--friction", repr(p.friction),
-               "--dt", repr(p.dt), "--density", repr(p.density)]
+    ballast, bed = ballast_peer.binary_and_bed(args.bed, "phase_copies.py")
+    command = [ballast, "bench-bed", bed, "--steps", str(args.steps),
+               "--phase-times"] + ballast_peer.physics_flags(Physics())
     print(f"{os.path.basename(args.bed)}, {args.steps} steps: median µs per step of each phase; "
           "speed-up against the lone thread")
     print("| round | phase | 1 thread | copies (vCPU 0, 1) | 2 threads (each) | copies' speed-up "
@@ -117,7 +112,8 @@ def main():
                   f"| {two_speedup:.2f} | {s1:.1f}, {sc:.1f}, {s2:.1f} % |")
     for name in PHASES:
         copies_speedups, two_speedups = ratios[name]
-        print(f"{name}: median speed-up over the rounds, copies {statistics.median(copies_speedups):.2f}, "
+        print(f"{name}: median speed-up over the rounds, "
+              f"copies {statistics.median(copies_speedups):.2f}, "
               f"2 threads {statistics.median(two_speedups):.2f}")
 
 

@@ -22,9 +22,8 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import ballast_peer  # noqa: E402
 from physics import Physics  # noqa: E402
-
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 
 
 def phase(symbol, dso):
@@ -43,19 +42,15 @@ def phase(symbol, dso):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("bed", nargs="?", default=os.path.join(ROOT, "build", "peers", "spheres.txt"))
+    ap.add_argument("bed", nargs="?", default=ballast_peer.SPHERE_BED)
     ap.add_argument("--steps", type=int, default=20000)
     args = ap.parse_args()
-    if not os.path.exists(args.bed):
-        sys.exit(f"thread_time.py: no bed at {args.bed} (run make bench-peers once)")
-    ballast = os.environ.get("BALLAST", os.path.join(ROOT, "build", "study", "ballast"))
-    p = Physics()
+    ballast, bed = ballast_peer.binary_and_bed(args.bed, "thread_time.py")
     with tempfile.TemporaryDirectory() as work:
         data = os.path.join(work, "perf.data")
-        run = ["perf", "record", "-q", "-F", "5000", "-o", data, ballast, "bench-bed", args.bed,
-               "--steps", str(args.steps), "--threads", "2", "--json", "--stiffness",
-               repr(p.stiffness), "--friction", repr(p.friction), "--dt", repr(p.dt),
-               "--density", repr(p.density)]
+        run = ["perf", "record", "-q", "-F", "5000", "-o", data, ballast, "bench-bed", bed,
+               "--steps", str(args.steps), "--threads", "2",
+               "--json"] + ballast_peer.physics_flags(Physics())
         subprocess.run(run, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                        env=dict(os.environ, OMP_NUM_THREADS="2"))
         script = subprocess.run(["perf", "script", "-i", data, "-F", "tid,ip,sym,dso",
