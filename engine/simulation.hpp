@@ -174,7 +174,8 @@ class Simulation {
   // A live_cover for the ball–ball list above `bound` (m), with headroom so that a
   // moving bed remakes its live lists a few times per build rather than every step.
   float live_cover_above(float bound) const;
-  void sum_wall_forces();
+  // Each wall's force from the balls, N: the wall candidates' wrenches in list order.
+  void sum_wall_forces(std::vector<Vec3>& force) const;
   void drive_walls();
   // Both, then the largest squared wall move since the last build (m²).
   double move_walls();
