@@ -212,16 +212,19 @@ void run(BenchBedArgs& a) {
       hash.c_str());
   if (a.phase_times) {  // the JSON's figures, one line per thread
     const nlohmann::json t = phase_json(sim.phase_times());
+    const auto print_threads = [](const nlohmann::json& threads) {
+      for (std::size_t n = 0; n < threads.size(); ++n) {
+        const nlohmann::json& u = threads[n];
+        std::printf(
+            "  thread %zu: fork %.2f, contacts %.2f, barrier %.2f, walls and integrate %.2f, "
+            "join %.2f\n",
+            n, u["fork_us"].get<double>(), u["contacts_us"].get<double>(),
+            u["barrier_us"].get<double>(), u["walls_and_integrate_us"].get<double>(),
+            u["join_us"].get<double>());
+      }
+    };
     std::printf("phase times, us per step: serial %.2f\n", t["serial_us"].get<double>());
-    for (std::size_t n = 0; n < t["threads"].size(); ++n) {
-      const nlohmann::json& u = t["threads"][n];
-      std::printf(
-          "  thread %zu: fork %.2f, contacts %.2f, barrier %.2f, walls and integrate %.2f, "
-          "join %.2f\n",
-          n, u["fork_us"].get<double>(), u["contacts_us"].get<double>(),
-          u["barrier_us"].get<double>(), u["walls_and_integrate_us"].get<double>(),
-          u["join_us"].get<double>());
-    }
+    print_threads(t["threads"]);
     const nlohmann::json& st = t["step_us"];
     std::printf(
         "step, us: mean %.2f, quartiles %.2f, %.2f, %.2f; time beyond the median step: "
@@ -230,15 +233,7 @@ void run(BenchBedArgs& a) {
         st["quartiles"][1].get<double>(), st["quartiles"][2].get<double>(),
         100.0 * st["time_beyond_median"].get<double>());
     std::printf("medians, us per step:\n");
-    for (std::size_t n = 0; n < t["thread_medians"].size(); ++n) {
-      const nlohmann::json& u = t["thread_medians"][n];
-      std::printf(
-          "  thread %zu: fork %.2f, contacts %.2f, barrier %.2f, walls and integrate %.2f, "
-          "join %.2f\n",
-          n, u["fork_us"].get<double>(), u["contacts_us"].get<double>(),
-          u["barrier_us"].get<double>(), u["walls_and_integrate_us"].get<double>(),
-          u["join_us"].get<double>());
-    }
+    print_threads(t["thread_medians"]);
   }
 }
 
