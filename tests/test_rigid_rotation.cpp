@@ -21,10 +21,10 @@ constexpr double kMass = 0.05, kRadius = 0.01;
 const Vec3 kInertia = kMass * kRadius * kRadius * Vec3(1.0, 2.0, 3.0);
 
 struct FreeSpin {
-  double max_momentum_error = 0.0;   // max |L(t) − L(0)| / |L(0)|, L = R·I·Rᵀ·ω
-  double max_magnitude_error = 0.0;  // max ||L(t)| − |L(0)|| / |L(0)|
-  double max_energy_error = 0.0;     // max |E(t) − E(0)| / E(0)
-  double min_middle_axis_spin = 0.0; // min of ω along the body's intermediate axis, rad/s
+  double max_momentum_error = 0.0;    // max |L(t) − L(0)| / |L(0)|, L = R·I·Rᵀ·ω
+  double max_magnitude_error = 0.0;   // max ||L(t)| − |L(0)|| / |L(0)|
+  double max_energy_error = 0.0;      // max |E(t) − E(0)| / E(0)
+  double min_middle_axis_spin = 0.0;  // min of ω along the body's intermediate axis, rad/s
 };
 
 // A two-ball body given the moments above (the balls only make it a clump, they
@@ -73,8 +73,8 @@ const Vec3 kNearMiddleAxis = kOmega * Vec3(0.01, 1.0, 0.01);
 const Vec3 kOblique = kOmega * Vec3(1.0, 1.0, 1.0).normalized();
 
 void print(const char* label, const FreeSpin& r) {
-  std::printf("%-14s |dL|/L %.2e, d|L|/L %.2e, dE/E %.2e, min middle-axis spin %.3f rad/s\n",
-              label, r.max_momentum_error, r.max_magnitude_error, r.max_energy_error,
+  std::printf("%-14s |dL|/L %.2e, d|L|/L %.2e, dE/E %.2e, min middle-axis spin %.3f rad/s\n", label,
+              r.max_momentum_error, r.max_magnitude_error, r.max_energy_error,
               r.min_middle_axis_spin);
 }
 
