@@ -16,6 +16,10 @@ ball-steps/s per revision, its ratio to the first revision, its 2/1-thread speed
 its state hash after the run (equal hashes: the revisions compute the same numbers);
 then the median over rounds of each round's ratio to the first revision, which a
 host whose speed drifts over minutes leaves alone better than a ratio of medians.
+With --phase-times, each run also times its phases (`bench-bed --phase-times`) and a
+last table gives, per revision, the integration's median time per step over the force
+pass's (the slower thread's of each): a change to one pass shows in that ratio even
+when the host's speed moves by more than the change between two runs.
 """
 import argparse
 import os
@@ -64,6 +68,8 @@ def main():
     ap.add_argument("--steps-sample1", type=int, default=1000)
     ap.add_argument("--beds-only", choices=("spheres", "sample1"),
                     help="one bed instead of both")
+    ap.add_argument("--phase-times", action="store_true",
+                    help="also compare the integration's time per step to the force pass's")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     builds = [build_revision(r, a.work) for r in a.revisions]
@@ -74,12 +80,19 @@ def main():
         p = Physics(steps=getattr(a, f"steps_{bed}"))
         rate = {(s, n): [] for s, _, _ in builds for n in (1, 2)}
         hashes = {(s, n): set() for s, _, _ in builds for n in (1, 2)}
+        share = {(s, n): [] for s, _, _ in builds for n in (1, 2)}  # integration / force pass
         runs = [(b, n) for n in (1, 2) for b in builds]
         print(f"\n== {bed}: {p.steps} steps, {a.rounds} rounds ==", flush=True)
         for k in range(a.rounds):
             for (short, binary, flags), n in runs[k % len(runs):] + runs[:k % len(runs)]:
-                r = ballast_peer.run(binary, path, p, n, extra=flags)
+                timed = ["--phase-times"] if a.phase_times else []
+                r = ballast_peer.run(binary, path, p, n, extra=flags + timed)
                 rate[(short, n)].append(r["ball_steps_per_s"])
+                if a.phase_times:
+                    threads = r["phase_times"]["thread_medians"]
+                    share[(short, n)].append(
+                        max(t["walls_and_integrate_us"] for t in threads) /
+                        max(t["contacts_us"] for t in threads))
                 hashes[(short, n)].add(r["state_hash"])
                 print(f"  round {k + 1}: {short} {n} threads: {r['ball_steps_per_s']:.3e}",
                       flush=True)
@@ -104,6 +117,16 @@ def main():
             q = [y / x for x, y in zip(rate[(short, 1)], rate[(short, 2)])]
             cells.append(f"{statistics.median(q):.2f} ({min(q):.2f}–{max(q):.2f})")
             print(f"| {short} | " + " | ".join(cells) + " |")
+        if a.phase_times:
+            print(f"\n{bed}: integration / force pass, medians per step of the slower thread; "
+                  "median over rounds (range)")
+            print("| revision | 1 thread | 2 threads |")
+            print("|---|---|---|")
+            for short, _, _ in builds:
+                cells = [f"{statistics.median(share[(short, n)]):.3f} "
+                         f"({min(share[(short, n)]):.3f}–{max(share[(short, n)]):.3f})"
+                         for n in (1, 2)]
+                print(f"| {short} | " + " | ".join(cells) + " |")
     return 0
 
 
