@@ -121,9 +121,9 @@ inline void place_balls(const std::vector<Vec3>& reference, const BodyStore& bod
 // one body filled the out-of-order window and the next body's chain started when
 // the last one ended; done a block at a time, one kind of work per loop, the chains
 // of neighbouring bodies overlap. Same operations per body, so the same bits. On the
-// Sample 1 bench bed the integration fell from 0.79 to 0.64 of the force pass's time
-// with the box tests' numerics, and from 0.96 to 0.76 with the benchmark's
-// (docs/PERFORMANCE.md, "What bought what"). The size is not critical; 16 bodies'
+// Sample 1 bench bed, one thread, the integration fell from 0.79 to 0.64 of the force
+// pass's time with the box tests' numerics, and from 0.96 to 0.76 with the
+// benchmark's (docs/PERFORMANCE.md, "What bought what"). The size is not critical; 16 bodies'
 // balls (about 160 in Sample 1) stay in L1 between the loops.
 constexpr Index kBodyBlock = 16;
 
