@@ -110,6 +110,16 @@ Index Simulation::add_servo(const Servo& s) {
   return static_cast<Index>(servos_.size()) - 1;
 }
 
+void Simulation::release_servo(Index servo) {
+  require_setup(servo >= 0 && servo < static_cast<Index>(servos_.size()), "servo index", servo,
+                "an existing servo");
+  for (Index w : servos_[servo].walls) {
+    walls_[w].motion = WallMotion::Fixed;
+    walls_[w].velocity = Vec3::Zero();
+  }
+  servos_.erase(servos_.begin() + servo);
+}
+
 void Simulation::set_rotation_integrator(RotationIntegrator r) {
   if (r == RotationIntegrator::kFull && settings_.rotation != r)
     for (Index b = 0; b < bodies_.size(); ++b)

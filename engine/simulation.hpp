@@ -85,6 +85,9 @@ class Simulation {
   }
   Index add_wall(const Wall& w);
   Index add_servo(const Servo& s);
+  // Stops a servo: its walls stand still from now on (motion Fixed, velocity zero)
+  // and the servos after it move down one index.
+  void release_servo(Index servo);
 
   // ---- changing conditions during a run ----
   void set_gravity(const Vec3& g) { settings_.gravity = g; }
