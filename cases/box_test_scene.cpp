@@ -134,6 +134,9 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& j, const std::string& sc
     for (const char* key : {"initial_porosity", "expansion_speed"})
       refuse_with_file(top.object("preparation"), key, "/preparation");
   p.boolean("frictionless_settling", s.frictionless_settling);
+  const bool levelling_given =
+      p.number("levelling_pressure", s.levelling_pressure, "in [0, 1e6] Pa",
+               [](double v) { return v >= 0.0 && v <= 1e6; });
   p.number("gravity_factor", s.gravity_factor, "in [1, 1000]",
            [](double v) { return v >= 1.0 && v <= 1000.0; });
   p.number("equilibrium_ratio", s.equilibrium_ratio, "in (0, 0.5]",
@@ -154,11 +157,13 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& j, const std::string& sc
   sl.number("max_speed", s.sleeper_max_speed, "> 0 m/s", positive);
   sl.number("gain", s.sleeper_gain, "in (0, 1]", [](double v) { return v > 0.0 && v <= 1.0; });
   sl.finish();
+  if (!levelling_given) s.levelling_pressure = s.preload / (s.sleeper_length * s.width);
 
   JsonFields me(top.object("measurement"), "/measurement");
   me.number("cube_side", s.cube_side, "> 0 m", positive);
   me.number("sphere_radius", s.sphere_radius, "> 0 m", positive);
   me.integer("series_every", s.series_every, ">= 1", [](long v) { return v >= 1; });
+  me.number("zone_depth", s.zone_depth, "> 0 m", positive);
   me.finish();
   top.finish();
   return s;

@@ -51,9 +51,16 @@ struct BoxTestScene {
                                       // denser jams while growing and springs apart)
   double expansion_speed = 0.05;      // m/s at which ball radii grow (slow enough not to fling)
   bool frictionless_settling = true;  // settle at 1 g without friction before compaction
-  double gravity_factor = 10.0;       // enhanced gravity during compaction, × 9.81 m/s²
-  double equilibrium_ratio = 5e-3;    // unbalanced-force ratio ending a settling stage
-  long max_stage_steps = 400000;      // a stage that has not settled by then stops
+  // Pa: the lid stays on through compaction as a servo plate pressing the bed's top
+  // with this pressure, and is lifted off before the sleeper comes, so the sleeper
+  // bears on a levelled surface (docs/BOX_TEST.md, "The levelling plate"). A scene
+  // that does not give it gets the sleeper's preload pressure, preload / (sleeper
+  // length × box width): 40 kPa in the paper's box. 0: the lid is lifted off after
+  // growth and the bed settles with a free, rough top.
+  double levelling_pressure = 3e3 / (0.25 * box_test::kWidth);
+  double gravity_factor = 10.0;     // enhanced gravity during compaction, × 9.81 m/s²
+  double equilibrium_ratio = 5e-3;  // unbalanced-force ratio ending a settling stage
+  long max_stage_steps = 400000;    // a stage that has not settled by then stops
   // sleeper: a rigid block across the full width, centred in x (the paper gives
   // no size: an assumption, docs/BOX_TEST.md)
   double sleeper_length = 0.25, sleeper_height = 0.1;  // m
@@ -66,6 +73,10 @@ struct BoxTestScene {
   double cube_side = 0.005;     // m, the paper's porosity grid
   double sphere_radius = 0.05;  // m, measurement spheres
   long series_every = 200;      // steps between load-displacement samples
+  // m: the top layer whose particles the zone measurements follow (beneath and
+  // beside the sleeper): centres within this depth of the bed's surface at the start
+  // of loading. Two nominal diameters.
+  double zone_depth = 2.0 * box_test::kSphereDiameter;
   // "": all stages; "prepare" or "compact" stop early (for studies of settling).
   std::string stop_after;
 };

@@ -131,15 +131,17 @@ TEST(PackingImport, SceneRefusesGeneratorKeysBesideAFile) {
 
 TEST(PackingImport, ImportedBedStandsForThePreparedSample) {
   // Three spheres resting side by side on the base. With no settling before
-  // compaction and stop_after "prepare", no step runs: the bed comes back as it
-  // went in, through the run's end-of-run hook (`ballast run --export-packing`).
+  // compaction, no levelling plate and stop_after "prepare", no step runs: the bed
+  // comes back as it went in, through the run's end-of-run hook (`ballast run
+  // --export-packing`).
   const std::string bed = write_temp("ballast_import_bed.txt",
                                      "0.05 0.05 0.018 0.018\n0.10 0.05 0.018 0.018\n"
                                      "0.15 0.05 0.018 0.018\n");
   nlohmann::json j = {
       {"particles", {{"file", bed}}},
       {"box", {{"length", 0.2}, {"width", 0.1}, {"height", 0.1}}},
-      {"preparation", {{"frictionless_settling", false}, {"stop_after", "prepare"}}}};
+      {"preparation",
+       {{"frictionless_settling", false}, {"levelling_pressure", 0.0}, {"stop_after", "prepare"}}}};
   Packing out;
   const BoxTestResult r = run_box_test(parse_box_test_scene(j), nullptr,
                                        [&](const Simulation& sim) { out = packing_of(sim); });
