@@ -5,6 +5,8 @@
 #include <cmath>
 #include <ostream>
 
+#include "cases/box_test_zones.hpp"
+#include "cases/contact_census.hpp"
 #include "engine/clump_shape.hpp"
 #include "engine/porosity.hpp"
 
@@ -13,20 +15,6 @@ namespace ballast {
 namespace {
 
 constexpr double kDeg = 180.0 / kPi;
-
-ContactSnapshot snapshot_contacts(const Simulation& sim) {
-  ContactSnapshot s;
-  s.stats = sim.contacts();
-  const ContactList& c = sim.ball_contacts();
-  const BallStore& b = sim.balls();
-  for (Index k = 0; k < c.size(); ++k) {
-    if (!c.active[k]) continue;
-    s.from.push_back(b.position[c.a[k]]);
-    s.to.push_back(b.position[c.b[k]]);
-    s.force.push_back(c.force(k).norm());
-  }
-  return s;
-}
 
 // Rotation angles (deg) of the accumulated rotation vectors a − b.
 std::vector<double> angles(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
@@ -106,12 +94,18 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, s
   out.stages.push_back(settle(sim, "preload", s.equilibrium_ratio, s.max_stage_steps, log,
                               SettleRule::kSeated,
                               [&sim, wall] { return -sim.walls()[wall].displacement.z(); }));
+  if (log) {
+    const SleeperBearing b = snapshot_contacts(sim, wall).sleeper;
+    *log << "  sleeper bears on " << b.bodies << " particles (" << b.contacts
+         << " contacts; force max " << b.max << " N, median " << b.p50 << " N)\n";
+  }
 
   // Cycles: F(t) = (Fmin + Fmax)/2 − (Fmax − Fmin)/2·cos(2πf(t − t0)).
   const double t0 = sim.time();
   sim.set_servo_target(servo_id, sinusoidal_load(s.preload, s.peak_load, s.frequency, t0));
   sim.reset_motion_reference();
-  out.before = snapshot_contacts(sim);
+  out.before = snapshot_contacts(sim, wall);
+  out.near_before = count_near_pairs(sim, near_pair_gaps());
   out.position_start = sim.bodies().position;
   const double z0 = sim.walls()[wall].displacement.z();
   const double period = 1.0 / s.frequency;
@@ -137,7 +131,7 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, s
     }
     if (!peak_done && sim.time() >= t_peak) {
       peak_done = true;
-      out.at_peak = snapshot_contacts(sim);
+      out.at_peak = snapshot_contacts(sim, wall);
       out.position_peak = sim.bodies().position;
       rotation_peak = sim.bodies().rotation;
       out.settlement_peak = z0 - sim.walls()[wall].displacement.z();
@@ -148,7 +142,7 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, s
        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
        sim.unbalanced_force_ratio(), ""});
   out.rms_force_error = samples ? std::sqrt(err2 / samples) : 0.0;
-  out.after = snapshot_contacts(sim);
+  out.after = snapshot_contacts(sim, wall);
   out.position_end = sim.bodies().position;
   const std::vector<Vec3> zero(sim.bodies().size(), Vec3::Zero());
   out.rotation_deg_loading = angles(rotation_peak, zero);
@@ -161,6 +155,7 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, s
   out.max_displacement_after = max_distance(out.position_end, out.position_start);
   out.permanent_settlement = z0 - sim.walls()[wall].displacement.z();
   out.resilient_settlement = out.settlement_peak - out.permanent_settlement;
+  out.zones = measure_zones(out, x0, x1, top, s.zone_depth);
   out.loaded = true;
   if (log)
     *log << "  cycle: settlement " << out.settlement_peak * 1e3 << " mm at peak, permanent "

@@ -13,12 +13,45 @@
 
 namespace ballast {
 
+// How the sleeper bears on the bed: its touching ball contacts, the bodies they
+// belong to, and their forces (N).
+struct SleeperBearing {
+  long contacts = 0, bodies = 0;
+  double total = 0.0, max = 0.0, p50 = 0.0, p90 = 0.0;
+};
+
 // Contacts at one instant (Figs 11-12) and the force network behind Figs 10-12.
 struct ContactSnapshot {
   ContactStats stats;
   // Ball–ball contacts touching now: the two ball centres and |F|, for drawing.
   std::vector<Vec3> from, to;
-  std::vector<double> force;  // N
+  std::vector<double> force;                                 // N
+  double force_p50 = 0.0, force_p90 = 0.0, force_p99 = 0.0;  // N, percentiles of `force`
+  SleeperBearing sleeper;                                    // zero before a sleeper is placed
+};
+
+// Contacts counted by other conventions than ours (touching pairs of different
+// bodies, once), to see how PFC's figures can arise (docs/VALIDATION.md): pairs
+// whose gap is at most gap[i], and the overlapping ball pairs inside clumps.
+struct NearPairs {
+  std::vector<double> gap;       // m
+  std::vector<long> ball_pairs;  // pairs of balls of different bodies, counted once
+  std::vector<long> wall_pairs;  // ball–wall pairs
+  long intra_clump_pairs = 0;    // overlapping pairs of balls of one clump
+};
+
+// Mean motion of the top layer's particles beneath and beside the sleeper (the
+// paper's displacement directions, Figs 15-17), from the start of loading.
+struct ZoneMotion {
+  long count = 0;
+  double dz_peak = 0.0, dz_end = 0.0;  // m, mean vertical displacement, up positive
+  double rotation_loading_deg = 0.0, rotation_unloading_deg = 0.0, rotation_cycle_deg = 0.0;
+};
+
+struct Zones {
+  double surface = 0.0;      // m, bed top under the sleeper at the start of loading
+  double layer_depth = 0.0;  // m, the top layer: centres at most this far below it
+  ZoneMotion beneath, beside;
 };
 
 struct RotationStats {
@@ -53,6 +86,8 @@ struct BoxTestResult {
   double bed_height = 0.0;                               // m, top of the bed under the sleeper
 
   ContactSnapshot before, at_peak, after;
+  NearPairs near_before;  // at the start of loading
+  Zones zones;            // set for loaded runs
   RotationStats rotation_loading, rotation_unloading, rotation_cycle;
   double max_displacement_peak = 0.0, max_displacement_after = 0.0;  // m
 

@@ -39,6 +39,26 @@ std::vector<Vec3> difference(const std::vector<Vec3>& b, const std::vector<Vec3>
   return d;
 }
 
+void write_near_pairs(hid_t g, const NearPairs& n) {
+  scalar_set(g, "near_gap", n.gap, "m");
+  const auto as_double = [](const std::vector<long>& v) {
+    return std::vector<double>(v.begin(), v.end());
+  };
+  scalar_set(g, "near_pairs", as_double(n.ball_pairs), "1");
+  scalar_set(g, "near_wall", as_double(n.wall_pairs), "1");
+  number_attribute(g, "intra_clump_pairs", n.intra_clump_pairs);
+}
+
+void write_zone(hid_t parent, const char* name, const ZoneMotion& z) {
+  Handle g = group(parent, name);
+  number_attribute(g, "count", z.count);
+  number_attribute(g, "dz_peak", z.dz_peak);
+  number_attribute(g, "dz_end", z.dz_end);
+  number_attribute(g, "rotation_loading_deg", z.rotation_loading_deg);
+  number_attribute(g, "rotation_unloading_deg", z.rotation_unloading_deg);
+  number_attribute(g, "rotation_cycle_deg", z.rotation_cycle_deg);
+}
+
 void write_contacts(hid_t parent, const char* name, const ContactSnapshot& c) {
   Handle g = group(parent, name);
   number_attribute(g, "ball_contacts", c.stats.ball_contacts);
@@ -46,6 +66,15 @@ void write_contacts(hid_t parent, const char* name, const ContactSnapshot& c) {
   number_attribute(g, "coordination", c.stats.coordination);
   number_attribute(g, "max_force", c.stats.max_force);
   number_attribute(g, "mean_force", c.stats.mean_force);
+  number_attribute(g, "force_p50", c.force_p50);
+  number_attribute(g, "force_p90", c.force_p90);
+  number_attribute(g, "force_p99", c.force_p99);
+  number_attribute(g, "sleeper_contacts", c.sleeper.contacts);
+  number_attribute(g, "sleeper_bodies", c.sleeper.bodies);
+  number_attribute(g, "sleeper_force_total", c.sleeper.total);
+  number_attribute(g, "sleeper_force_max", c.sleeper.max);
+  number_attribute(g, "sleeper_force_p50", c.sleeper.p50);
+  number_attribute(g, "sleeper_force_p90", c.sleeper.p90);
   vec3_set(g, "from", c.from, "m");
   vec3_set(g, "to", c.to, "m");
   scalar_set(g, "force", c.force, "N");
@@ -106,9 +135,18 @@ void write_box_test_result(hid_t run, const BoxTestResult& r) {
     Handle contacts = group(run, "contacts");
     write_contacts(contacts, "before", r.before);
     if (r.loaded) {
+      Handle before(H5Gopen2(contacts, "before", H5P_DEFAULT), H5Gclose, "open contacts/before");
+      write_near_pairs(before, r.near_before);
       write_contacts(contacts, "peak", r.at_peak);
       write_contacts(contacts, "after", r.after);
     }
+  }
+  if (r.loaded) {
+    Handle z = group(run, "zones");
+    number_attribute(z, "surface", r.zones.surface);
+    number_attribute(z, "layer_depth", r.zones.layer_depth);
+    write_zone(z, "beneath", r.zones.beneath);
+    write_zone(z, "beside", r.zones.beside);
   }
   {
     Handle series = group(run, "series");
