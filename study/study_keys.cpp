@@ -71,6 +71,11 @@ constexpr StudyKey kStudyKeys[] = {
          "clump rotation: gyroscopic term dropped as PFC3D 3.x does (eq 17, [W] = 0) or kept"),
     text("mass_mode", "sum|paper|uniform", "numerics", "clump mass properties (docs/CLUMPS.md)"),
     number("local_damping", closed_open(0, 1), "numerics", "PFC local damping coefficient"),
+    integer("count", at_least(1), "sample",
+            "particles: spheres, or clumps replacing them one for one (the paper's 1,936 "
+            "spheres, 1,770 Sample 1 and 1,995 Sample 2 clumps)"),
+    number("levelling_pressure", closed(0, 1e6), "loading",
+           "Pa, the levelling plate on the bed's top through compaction; 0: a free top"),
     number("gravity_factor", at_least(1), "loading", "enhanced gravity while compacting, x g"),
     integer("cycles", at_least(1), "loading", "load cycles of the sleeper"),
 };

@@ -29,7 +29,7 @@ struct StudyKey {
   KeyKind kind;
   KeyRange range;            // kInteger, kNumber
   std::string_view choices;  // kText, or a kInteger's only values: "pfc|full", "6|14"
-  std::string_view group;    // "clump" (a clump parameter), "shape", "numerics", "loading"
+  std::string_view group;  // "clump" (a clump parameter), "shape", "sample", "numerics", "loading"
   std::string_view allowed;  // shown instead of the text made from range/choices if set
   std::string_view description;
 };

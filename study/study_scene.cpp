@@ -28,6 +28,8 @@ constexpr SceneKey kSceneKeys[] = {
     {"rotation", "/numerics/rotation"},
     {"mass_mode", "/particles/mass_mode"},
     {"local_damping", "/numerics/local_damping"},
+    {"count", "/particles/count"},
+    {"levelling_pressure", "/preparation/levelling_pressure"},
     {"gravity_factor", "/preparation/gravity_factor"},
     {"cycles", "/sleeper/cycles"},
 };

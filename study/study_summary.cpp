@@ -6,6 +6,7 @@
 #include <ostream>
 
 #include "study/hdf5_read.hpp"
+#include "study/replicate_stats.hpp"
 #include "study/study_archive.hpp"
 
 namespace ballast {
@@ -19,6 +20,7 @@ SummaryRow read_row(hid_t g, const std::string& where) {
   SummaryRow r;
   r.index = a.index;
   r.id = a.id;
+  if (has_attribute(g, "sample")) r.sample = read_text_attribute(g, "sample");
   r.ok = a.ok;
   r.message = a.message;
   r.wall_seconds = read_double_attribute(g, "wall_seconds");
@@ -38,7 +40,63 @@ SummaryRow read_row(hid_t g, const std::string& where) {
   r.rotation_deg = read_double_attribute(g, "rotation_loading_mean_deg");
   r.displacement_mm = read_double_attribute(g, "max_displacement_peak") * 1e3;
   r.settlement_mm = read_double_attribute(g, "settlement_peak") * 1e3;
+  r.resilient_mm = read_double_attribute(g, "resilient_settlement") * 1e3;
+  if (r.loaded && has_link(g, "contacts/peak")) {
+    Handle peak(H5Gopen2(g, "contacts/peak", H5P_DEFAULT), H5Gclose,
+                "open contacts/peak of " + where);
+    if (has_attribute(peak, "sleeper_bodies"))
+      r.sleeper_bodies = double(read_int_attribute(peak, "sleeper_bodies"));
+  }
   return r;
+}
+
+// Per sample with two or more loaded runs: "mean ± half-width" of the 95 % interval.
+void print_replicates(std::ostream& out, const std::vector<SummaryRow>& rows) {
+  std::vector<std::string> samples;
+  for (const SummaryRow& r : rows)
+    if (r.ok && r.loaded && std::find(samples.begin(), samples.end(), r.sample) == samples.end())
+      samples.push_back(r.sample);
+  struct Column {
+    const char* label;
+    double SummaryRow::*field;
+    const char* format;
+  };
+  static const Column columns[] = {{"porosity", &SummaryRow::porosity, "%.3f ± %.3f"},
+                                   {"rot (deg)", &SummaryRow::rotation_deg, "%.3f ± %.3f"},
+                                   {"disp. (mm)", &SummaryRow::displacement_mm, "%.2f ± %.2f"},
+                                   {"settl. (mm)", &SummaryRow::settlement_mm, "%.3f ± %.3f"},
+                                   {"resil. (mm)", &SummaryRow::resilient_mm, "%.3f ± %.3f"},
+                                   {"bearing", &SummaryRow::sleeper_bodies, "%.1f ± %.1f"}};
+  bool header = false;
+  char line[400], cell[64];
+  for (const std::string& sample : samples) {
+    std::vector<const SummaryRow*> runs;
+    for (const SummaryRow& r : rows)
+      if (r.ok && r.loaded && r.sample == sample) runs.push_back(&r);
+    if (runs.size() < 2) continue;
+    if (!header) {
+      out << "\nover replicates: mean ± half-width of the 95 % interval (Student's t)\n";
+      std::snprintf(line, sizeof line, "%-10s %3s", "sample", "n");
+      out << line;
+      for (const Column& c : columns) {
+        std::snprintf(cell, sizeof cell, " %17s", c.label);
+        out << cell;
+      }
+      out << "\n";
+      header = true;
+    }
+    std::snprintf(line, sizeof line, "%-10s %3zu", sample.c_str(), runs.size());
+    out << line;
+    for (const Column& c : columns) {
+      std::vector<double> v;
+      for (const SummaryRow* r : runs) v.push_back(r->*(c.field));
+      const ReplicateStats st = replicate_stats(v);
+      std::snprintf(cell, sizeof cell, c.format, st.mean, st.half_width);
+      std::snprintf(line, sizeof line, " %17s", cell);
+      out << line;
+    }
+    out << "\n";
+  }
 }
 
 }  // namespace
@@ -87,6 +145,7 @@ void print_summary(std::ostream& out, const std::vector<SummaryRow>& rows) {
     }
     out << line;
   }
+  print_replicates(out, rows);
   bool any_failed = false;
   for (const SummaryRow& r : rows) {
     if (r.ok) continue;

@@ -12,6 +12,7 @@ namespace ballast {
 struct SummaryRow {
   long long index = 0;
   std::string id;
+  std::string sample;  // the matrix sample the run belongs to (its replicates share it)
   bool ok = false;
   bool loaded = false;  // ran the load cycle (not stopped after preparation)
   std::string message;
@@ -22,12 +23,15 @@ struct SummaryRow {
   double rotation_deg = 0.0;     // mean rotation during loading
   double displacement_mm = 0.0;  // largest displacement at peak load
   double settlement_mm = 0.0;    // sleeper settlement at peak load
+  double resilient_mm = 0.0;     // settlement at peak less the permanent settlement
+  double sleeper_bodies = 0.0;   // particles touching the sleeper at peak load (a count)
   double wall_seconds = 0.0;
 };
 
 // Every run in the archive, in study order.
 std::vector<SummaryRow> read_summary(const std::string& archive);
-// The table, then the failed runs with their messages.
+// The table, then, for every sample with two or more loaded runs, the mean and 95 %
+// confidence interval over its replicates, then the failed runs with their messages.
 void print_summary(std::ostream& out, const std::vector<SummaryRow>& rows);
 
 }  // namespace ballast
