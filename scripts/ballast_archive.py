@@ -30,6 +30,10 @@ FORMATS = {"ballast-run": "run", "ballast-study": "study"}
 CLUMP_KEYS = ("directions", "p", "n", "balls_per_direction", "c", "d3", "edge_balls",
               "virtual_sphere_factor", "adjacency")
 
+# The zones of the top layer (group zones/, newer archives): particles whose centre lies
+# under the sleeper's footprint, and the others.
+ZONES = ("beneath", "beside")
+
 # Scene defaults for the values the figures need (docs/BOX_TEST.md): a scene file may
 # leave any key out, and then runs with these.
 SCENE_DEFAULTS = {
@@ -142,6 +146,25 @@ class Run:
             raise ArchiveError(f"{self.where} has no attribute {name}"
                                + (f" on {path}" if path else ""))
         return _plain(obj.attrs[name])
+
+    def optional(self, name, path=""):
+        """Attribute `name` of the run (or of the group at `path`), or None where the
+        archive lacks it: for fields that newer archives add and older ones do not have."""
+        if path and path not in self.group:
+            return None
+        obj = self.group[path] if path else self.group
+        return _plain(obj.attrs[name]) if name in obj.attrs else None
+
+    def zone(self, zone):
+        """The attributes of zones/<zone> (newer archives) with their means left out when
+        the zone holds no particle (they are undefined then); None without the group."""
+        path = f"zones/{zone}"
+        if path not in self.group:
+            return None
+        attrs = _attributes(self.group[path])
+        if "count" in attrs and int(attrs["count"]) == 0:
+            return {"count": 0}
+        return attrs
 
     def displacement(self, stage):
         """Per-particle displacement [N, 3] (m) from the start of loading to `stage`,

@@ -3,25 +3,100 @@
 
     /usr/bin/python3 scripts/compare.py ARCHIVE.h5 [--runs ID1,ID2] [--json]
 
-One column per run (status ok), one row per measured quantity; a cell reads
-"ours (paper)" where the paper gives a number for the run's sample: the spheres,
-Table 2 Sample 1 or Sample 2 (Sample 2 has only its porosity; a run that changes a
-preset's clump parameters is not the paper's sample and gets none). The paper's runs
-are full scale at 40 kN: at smoke scale (fewer, smaller particles, a lighter load)
-forces, counts and displacements are not expected to match, only the trends between
-samples. Contact counts are ball–ball plus ball–wall; the paper's Sample 1 count
-includes the overlaps inside clumps (16 per ball). `--json` prints the same numbers,
-unrounded, for scripts.
+First the scale each sample ran at (bodies, balls, peak load); the paper's numbers are
+for its full-scale box (1,936 spheres or 1,770 clumps in a 700 mm box, 40 kN), so a
+sample run at another scale is said to be NOT comparable and its cells carry no paper
+numbers (paper_values.scale_shortfalls). Then one column per run (status ok), one row
+per measured quantity; a cell reads "ours (paper)" where the paper gives a number for
+the run's sample: the spheres, Table 2 Sample 1 or Sample 2 (Sample 2 has only its
+porosity; a run that changes a preset's clump parameters is not the paper's sample and
+gets none). Contact counts are ball–ball plus ball–wall; the paper's Sample 1 count
+includes the overlaps inside clumps (16 per ball): "contacts counted both ways" lays
+out that arithmetic where the archive holds the near-contact counts.
+
+Then the sample-level tables of scripts/compare_samples.py: replicates' means with 95 %
+intervals (when a sample has two runs or more), the spheres / clumps ratios, and the
+directions in which the top layer moves (archives with zones/). Fields that newer
+archives add (force percentiles, the sleeper's contacts, zones, near contacts) are
+rows where present and left out where not. `--json` prints the same numbers,
+unrounded, for scripts (keys: docs/FIGURES.md).
 """
 import argparse
 import json
+import math
 import sys
 
-from ballast_archive import ArchiveError, add_run_arguments, chosen_runs, open_archive
-from paper_values import PHASES, STAGES, paper_sample, paper_text, paper_values
+from ballast_archive import (ZONES, ArchiveError, add_run_arguments, chosen_runs,
+                             open_archive)
+from compare_samples import sample_stats, samples_json, samples_markdown, span
+from paper_values import (FULL_SCALE_SCENES, PHASES, STAGES, comparable, paper_sample,
+                          paper_text, paper_values, scale_shortfalls)
+from replicates import group_runs, ordered_union
 
 MM = 1e3
 STAGE_LABELS = {"before": "before loading", "peak": "at peak load", "after": "after unloading"}
+
+# Attributes of contacts/<stage> that newer archives add: (attribute, key suffix, label,
+# format). Forces in N.
+CONTACT_EXTRAS = (
+    ("force_p50", "force_p50_N", "ball–ball force, median (N)", "{:,.1f}"),
+    ("force_p90", "force_p90_N", "ball–ball force, 90th percentile (N)", "{:,.1f}"),
+    ("force_p99", "force_p99_N", "ball–ball force, 99th percentile (N)", "{:,.1f}"),
+    ("sleeper_contacts", "sleeper_contacts", "ball–sleeper contacts", "{:,.0f}"),
+    ("sleeper_bodies", "sleeper_bodies", "bodies touching the sleeper", "{:,.0f}"),
+    ("sleeper_force_max", "sleeper_force_max_N", "ball–sleeper force, max (N)", "{:,.0f}"),
+    ("sleeper_force_p50", "sleeper_force_p50_N", "ball–sleeper force, median (N)", "{:,.1f}"),
+    ("sleeper_force_p90", "sleeper_force_p90_N", "ball–sleeper force, 90th percentile (N)",
+     "{:,.1f}"),
+    ("sleeper_force_total", "sleeper_force_total_N", "ball–sleeper force, total (N)",
+     "{:,.0f}"),
+)
+
+# Attributes of zones/<zone>: (attribute, key suffix, label, factor to the printed unit,
+# format). Displacements up positive.
+ZONE_FIELDS = (
+    ("count", "count", "particles", 1.0, "{:,.0f}"),
+    ("dz_peak", "dz_peak_mm", "mean vertical displacement at peak (mm, up +)", MM, "{:.3g}"),
+    ("dz_end", "dz_end_mm", "mean vertical displacement after the cycle (mm)", MM, "{:.3g}"),
+) + tuple((f"rotation_{p}_deg", f"rotation_{p}_deg", f"mean rotation, {p} (°)", 1.0, "{:.3g}")
+          for p in PHASES)
+
+
+def contact_rows(run, stage, p):
+    """The rows of contacts/<stage>: count, max and mean force, and what newer archives
+    add there."""
+    path = f"contacts/{stage}"
+    c = lambda name: run.attribute(name, path)  # noqa: E731
+    pc = p["contacts"][STAGES.index(stage)] if "contacts" in p else (None, None, None)
+    label, key = f"contacts {STAGE_LABELS[stage]}", f"contacts_{stage}"
+    rows = [(f"{key}_count", f"{label}: count (ball–ball + ball–wall)",
+             int(c("ball_contacts")) + int(c("wall_contacts")), pc[0], "{:,.0f}"),
+            (f"{key}_max_force_N", f"{label}: max force (N)", float(c("max_force")), pc[1],
+             "{:,.0f}"),
+            (f"{key}_mean_force_N", f"{label}: mean force (N)", float(c("mean_force")), pc[2],
+             "{:.1f}")]
+    for name, suffix, text, fmt in CONTACT_EXTRAS:
+        value = run.optional(name, path)
+        if value is not None and math.isfinite(value):  # NaN: a percentile of nothing
+            rows.append((f"{key}_{suffix}", f"{label}: {text}", float(value), None, fmt))
+    return rows
+
+
+def zone_rows(run):
+    """The rows of zones/beneath and zones/beside (newer archives; none otherwise), with
+    the change on unloading, dz_end − dz_peak, of each; an empty zone has its count only."""
+    rows = []
+    for zone in ZONES:
+        got = run.zone(zone) or {}
+        for name, suffix, text, factor, fmt in ZONE_FIELDS:
+            if got.get(name) is not None:
+                rows.append((f"zone_{zone}_{suffix}", f"zone {zone} the sleeper: {text}",
+                             float(got[name]) * factor, None, fmt))
+        if "dz_peak" in got and "dz_end" in got:
+            rows.append((f"zone_{zone}_dz_unloading_mm", f"zone {zone} the sleeper: change "
+                         "on unloading, after − peak (mm)",
+                         (float(got["dz_end"]) - float(got["dz_peak"])) * MM, None, "{:.3g}"))
+    return rows
 
 
 def quantities(run, paper=None):
@@ -34,18 +109,9 @@ def quantities(run, paper=None):
         rows.append(("porosity_spheres", "porosity, measurement spheres on the column axis "
                      "(mean)", float(run.data("porosity/sphere_porosity").mean()),
                      p.get("porosity"), "{:.3f}"))
-    for k, stage in enumerate(STAGES):
-        if not run.has(f"contacts/{stage}"):
-            continue
-        c = lambda name: run.attribute(name, f"contacts/{stage}")  # noqa: E731
-        pc = p["contacts"][k] if "contacts" in p else (None, None, None)
-        label = f"contacts {STAGE_LABELS[stage]}"
-        rows += [(f"contacts_{stage}_count", f"{label}: count (ball–ball + ball–wall)",
-                  int(c("ball_contacts")) + int(c("wall_contacts")), pc[0], "{:,.0f}"),
-                 (f"contacts_{stage}_max_force_N", f"{label}: max force (N)",
-                  float(c("max_force")), pc[1], "{:,.0f}"),
-                 (f"contacts_{stage}_mean_force_N", f"{label}: mean force (N)",
-                  float(c("mean_force")), pc[2], "{:.1f}")]
+    for stage in STAGES:
+        if run.has(f"contacts/{stage}"):
+            rows += contact_rows(run, stage, p)
     if not run.loaded:
         return rows
     for k, phase in enumerate(PHASES):
@@ -67,7 +133,7 @@ def quantities(run, paper=None):
               a("resilient_settlement") * MM, None, "{:.3g}"),
              ("rms_force_error_N", "sleeper force error, rms (N)", a("rms_force_error"), None,
               "{:,.0f}")]
-    return rows
+    return rows + zone_rows(run)
 
 
 def cell(value, paper, fmt):
@@ -76,35 +142,122 @@ def cell(value, paper, fmt):
     return fmt.format(value) + ("" if paper is None else f" ({paper_text(paper)})")
 
 
-def scale_row(run):
-    return (f"{int(run.attribute('bodies'))} bodies, {int(run.attribute('balls'))} balls, "
-            f"{float(run.scene_value('sleeper', 'peak_load')) / 1e3:g} kN")
+def scale_text(runs):
+    """'N bodies, B balls, peak load X kN' over some runs (ranges where they differ)."""
+    return (f"{span([int(r.attribute('bodies')) for r in runs], '{:,}')} bodies, "
+            f"{span([int(r.attribute('balls')) for r in runs], '{:,}')} balls, peak load "
+            f"{span([float(r.scene_value('sleeper', 'peak_load')) / 1e3 for r in runs], '{:g}')}"
+            " kN")
+
+
+def scale_lines(groups):
+    """The scale of each sample, and a warning for each one that is not the paper's."""
+    lines = ["Scale of each sample:"]
+    lines += [f"- {g.name} ({len(g.runs)} run{'s' * (len(g.runs) > 1)}): {scale_text(g.runs)}"
+              for g in groups]
+    reduced = {}  # the samples short of the paper's scale, by how they fall short
+    for g in groups:
+        why = "; ".join(ordered_union(scale_shortfalls(r) for r in g.runs))
+        if why:
+            reduced.setdefault(why, []).append(g.name)
+    if reduced:
+        lines.append("")
+        lines += [f"**{', '.join(names)}: smoke/reduced-scale results ({why}), NOT comparable "
+                  "with the paper's numbers**, which are left out of their cells."
+                  for why, names in reduced.items()]
+        lines.append(f"The paper's numbers need the full-scale scenes {FULL_SCALE_SCENES}.")
+    return lines
 
 
 def markdown(runs):
-    """The side-by-side table as Markdown."""
-    columns = [{key: (label, ours, paper, fmt) for key, label, ours, paper, fmt
-                in quantities(r)} for r in runs]
-    keys = []
-    for col in columns:  # rows in first-seen order across runs
-        keys += [k for k in col if k not in keys]
+    """The side-by-side table as Markdown; the paper's numbers only in the cells of runs
+    comparable with them (the paper's sample, at its scale)."""
+    columns = [{key: (label, ours, paper if comparable(r) else None, fmt)
+                for key, label, ours, paper, fmt in quantities(r)} for r in runs]
     head = ["quantity"] + [r.label for r in runs]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head),
              "| paper's sample | " + " | ".join(paper_sample(r) or "—" for r in runs) + " |",
-             "| scale | " + " | ".join(scale_row(r) for r in runs) + " |"]
-    for key in keys:
+             "| scale | " + " | ".join(scale_text([r]) for r in runs) + " |"]
+    for key in ordered_union(columns):
         label = next(c[key][0] for c in columns if key in c)
         cells = [cell(*(c[key][1:]) if key in c else (None, None, "")) for c in columns]
         lines.append(f"| {label} | " + " | ".join(cells) + " |")
     return "\n".join(lines)
 
 
-def as_json(runs):
-    return {"runs": [{"id": r.id, "label": r.label, "shape": r.shape,
-                      "paper_sample": paper_sample(r),
-                      "quantities": {key: {"ours": ours, "paper": paper}
-                                     for key, _, ours, paper, _ in quantities(r)}}
-                     for r in runs]}
+def counted_both_ways(run):
+    """The near-contact counts of contacts/before as the paper's kind of count: for each
+    gap tolerance, ball–ball pairs once, both ends (2×), + ball–wall pairs, + the overlaps
+    inside clumps. [] for an archive without near_pairs. Just the arithmetic."""
+    path = "contacts/before"
+    if not run.has(f"{path}/near_pairs"):
+        return []
+    gaps, pairs = run.data(f"{path}/near_gap"), run.data(f"{path}/near_pairs")
+    wall = run.data(f"{path}/near_wall") if run.has(f"{path}/near_wall") else None
+    intra = run.optional("intra_clump_pairs", path)
+    out = []
+    for i, gap in enumerate(gaps):
+        both = 2 * int(pairs[i])
+        plus_wall = None if wall is None else both + int(wall[i])
+        out.append({"gap_m": float(gap), "ball_pairs": int(pairs[i]), "both_ends": both,
+                    "plus_wall": plus_wall,
+                    "plus_intra_clump": None if plus_wall is None or intra is None
+                    else plus_wall + int(intra)})
+    return out
+
+
+def counted_both_ways_markdown(runs):
+    """The table of counted_both_ways for every run that has the counts ('' if none)."""
+    lines = []
+    for run in runs:
+        paper = paper_values(run).get("contacts", [(None,)])[0][0] if comparable(run) else None
+        for row in counted_both_ways(run):
+            lines.append(f"| {run.label} | {row['gap_m'] * MM:g} | {row['ball_pairs']:,} | "
+                         f"{row['both_ends']:,} | " + " | ".join(
+                             "—" if row[k] is None else f"{row[k]:,}"
+                             for k in ("plus_wall", "plus_intra_clump"))
+                         + f" | {'—' if paper is None else paper_text(paper)} |")
+    if not lines:
+        return ""
+    return "\n".join(["## Contacts counted both ways (before loading)", "",
+                      "Ball pairs of different bodies within the gap, once; both ends "
+                      "counted; plus ball–wall pairs within the gap; plus the overlapping "
+                      "ball pairs inside clumps. The arithmetic only.", "",
+                      "| run | gap (mm) | ball–ball pairs | both ends (2×) | + ball–wall "
+                      "| + inside clumps | paper |", "|---|---|---|---|---|---|---|"] + lines)
+
+
+def run_json(run, rows):
+    entry = {"id": run.id, "label": run.label, "shape": run.shape,
+             "paper_sample": paper_sample(run),
+             "scale": {"bodies": int(run.attribute("bodies")),
+                       "balls": int(run.attribute("balls")),
+                       "peak_load_N": float(run.scene_value("sleeper", "peak_load")),
+                       "box_length_m": float(run.scene_value("box", "length"))},
+             "at_paper_scale": not scale_shortfalls(run),
+             "not_at_paper_scale_because": scale_shortfalls(run),
+             "quantities": {key: {"ours": ours, "paper": paper}
+                            for key, _, ours, paper, _ in rows}}
+    both = counted_both_ways(run)
+    if both:
+        paper = paper_values(run).get("contacts", [(None,)])[0][0]
+        entry["contacts_counted_both_ways"] = {"rows": both, "paper": paper}
+    return entry
+
+
+def as_json(runs, rows, stats):
+    return dict({"runs": [run_json(r, rows[r.id]) for r in runs]}, **samples_json(stats))
+
+
+def report(path, runs, stats):
+    """The whole Markdown printout."""
+    parts = [f"Runs of {path} beside Lu & McDowell (2007): ours (paper). The paper's box: "
+             "1,936 spheres or 1,770 clumps, 700 mm long, 40 kN.\n",
+             "\n".join(scale_lines([s.group for s in stats])), "", markdown(runs)]
+    for extra in (counted_both_ways_markdown(runs), samples_markdown(stats)):
+        if extra:
+            parts += ["", extra]
+    return "\n".join(parts)
 
 
 def main(argv=None):
@@ -115,12 +268,12 @@ def main(argv=None):
     try:
         with open_archive(args.archive) as archive:
             runs = chosen_runs(archive, args.runs, "compare")
+            rows = {r.id: quantities(r) for r in runs}
+            stats = sample_stats(group_runs(runs), rows)
             if args.json:
-                print(json.dumps(as_json(runs), indent=1))
+                print(json.dumps(as_json(runs, rows, stats), indent=1))
             else:
-                print(f"Runs of {args.archive} beside Lu & McDowell (2007): ours (paper). "
-                      "The paper's box: 1,936 spheres or 1,770 clumps, 40 kN.\n")
-                print(markdown(runs))
+                print(report(args.archive, runs, stats))
     except ArchiveError as e:
         print(f"compare.py: {e}", file=sys.stderr)
         return 1

@@ -16,11 +16,15 @@ run (`ballast run -o`). Writes into DIR, one line per file on stdout:
   fig16_displacements_<id>.png     clump run at the same scale (Fig. 16)
   fig17_displacements_<id>.png     clump run magnified (Fig. 17), when it needs it
   fig18_load_deformation.png       sleeper force against settlement, every run (Fig. 18)
+  fig_zones.png                    top layer beneath and beside the sleeper: mean vertical
+                                   displacement per sample, with the paper's directions
+                                   (archives with zones/; cf. Figs 15-17)
 
 What each shows and what to look for: docs/FIGURES.md. A figure that the archive
-cannot give (no clump templates in a single-run file, a run stopped before loading)
-is left out with a line on stderr. Exit status 0 when every figure that could be
-drawn was; 1 when the archive is unreadable, has no usable run, or a figure failed.
+cannot give (no clump templates in a single-run file, a run stopped before loading,
+no zones/ in an archive written before runs measured them) is left out with a line
+on stderr. Exit status 0 when every figure that could be drawn was; 1 when the
+archive is unreadable, has no usable run, or a figure failed.
 """
 import argparse
 import os
@@ -38,6 +42,7 @@ from fig_common import LETTERS, MM, save  # noqa: E402
 from fig_contacts import contacts_before, contacts_per_run  # noqa: E402
 from fig_displacements import displacements  # noqa: E402
 from fig_rotations import rotations_per_run  # noqa: E402
+from fig_zones import zone_figure  # noqa: E402
 
 
 GALLERY_COLUMNS = 5  # clumps per row in Fig. 7, as the paper's five samples
@@ -111,6 +116,7 @@ def render(runs, out_dir):
     if loaded:
         attempt("Figs 15-17", displacements, loaded, out_dir, note)
         attempt("Fig. 18", load_deformation, loaded, out_dir)
+        attempt("fig_zones", zone_figure, loaded, out_dir, note)
     return written, failed
 
 

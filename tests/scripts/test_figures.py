@@ -45,6 +45,13 @@ def script(name, *args):
                           capture_output=True, text=True, timeout=300)
 
 
+def with_zones(path, names):
+    """`names` and fig_zones.png when the archive's runs hold zones/ (newer archives)."""
+    with h5py.File(path, "r") as f:
+        groups = [f["run"]] if "run" in f else list(f["runs"].values())
+        return set(names) | ({"fig_zones.png"} if any("zones" in g for g in groups) else set())
+
+
 def written(result):
     """The file names a figures.py run reports, one per 'wrote PATH' line."""
     return {os.path.basename(line.split(" ", 1)[1]) for line in result.stdout.splitlines()
@@ -118,10 +125,10 @@ class Figures(unittest.TestCase):
         r = script("figures.py", self.spheres, "--out", self.out_dir("single"))
         self.assertEqual(r.returncode, 0, r.stderr)
         names = written(r)
-        self.assertEqual(names, {"fig10_contacts_before.png", "fig11_contacts_smoke-spheres.png",
-                                 "fig13_rotations_smoke-spheres.png",
-                                 "fig15_displacements_smoke-spheres.png",
-                                 "fig18_load_deformation.png"})
+        self.assertEqual(names, with_zones(self.spheres, {
+            "fig10_contacts_before.png", "fig11_contacts_smoke-spheres.png",
+            "fig13_rotations_smoke-spheres.png", "fig15_displacements_smoke-spheres.png",
+            "fig18_load_deformation.png"}))
         for n in names:
             self.assert_png(os.path.join(self.out_dir("single"), n))
 
@@ -132,22 +139,21 @@ class Figures(unittest.TestCase):
         # Alone, the clump run sets the common scale itself: Fig. 17 would repeat Fig. 16.
         self.assertIn("Fig. 17 of run 'smoke-table2_sample1' left out: its displacements set",
                       r.stderr)
-        self.assertEqual(written(r), {"fig07_clumps.png", "fig10_contacts_before.png",
-                                      "fig12_contacts_smoke-table2_sample1.png",
-                                      "fig14_rotations_smoke-table2_sample1.png",
-                                      "fig16_displacements_smoke-table2_sample1.png",
-                                      "fig18_load_deformation.png"})
+        self.assertEqual(written(r), with_zones(self.clumps, {
+            "fig07_clumps.png", "fig10_contacts_before.png",
+            "fig12_contacts_smoke-table2_sample1.png", "fig14_rotations_smoke-table2_sample1.png",
+            "fig16_displacements_smoke-table2_sample1.png", "fig18_load_deformation.png"}))
 
     def test_study_gives_every_figure_and_skips_the_failed_run(self):
         out = self.out_dir("study")
         r = script("figures.py", self.study, "--out", out)
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("skipping run 'broken-r1': status failed (body 12 left the box", r.stderr)
-        expected = {"fig07_clumps.png", "fig10_contacts_before.png",
-                    "fig11_contacts_spheres-r1.png", "fig12_contacts_T2S1-r1.png",
-                    "fig13_rotations_spheres-r1.png", "fig14_rotations_T2S1-r1.png",
-                    "fig15_displacements_spheres-r1.png", "fig16_displacements_T2S1-r1.png",
-                    "fig18_load_deformation.png"}
+        expected = with_zones(self.study, {
+            "fig07_clumps.png", "fig10_contacts_before.png", "fig11_contacts_spheres-r1.png",
+            "fig12_contacts_T2S1-r1.png", "fig13_rotations_spheres-r1.png",
+            "fig14_rotations_T2S1-r1.png", "fig15_displacements_spheres-r1.png",
+            "fig16_displacements_T2S1-r1.png", "fig18_load_deformation.png"})
         if self.expect_fig17():
             expected.add("fig17_displacements_T2S1-r1.png")
         self.assertEqual(written(r), expected)
@@ -199,11 +205,16 @@ class Figures(unittest.TestCase):
         self.assertEqual(t2["contacts_peak_max_force_N"]["paper"], 4233)
         self.assertEqual(t2["rotation_loading_mean_deg"]["paper"], 0.061)
         self.assertIsNone(t2["settlement_peak_mm"]["paper"])
-        # The text table shows the same numbers, rounded.
+        # The text table shows the same numbers, rounded; these tiny runs are not at the
+        # paper's scale, so it says so and sets no paper numbers beside them.
+        self.assertFalse(table["T2S1-r1"]["at_paper_scale"])
         r = script("compare.py", self.study)
         self.assertEqual(r.returncode, 0, r.stderr)
         porosity = table["T2S1-r1"]["quantities"]["porosity_grid"]["ours"]
-        self.assertIn(f"{porosity:.3f} (0.35)", r.stdout)
+        self.assertIn("| porosity, 5 mm grid under the sleeper | ", r.stdout)
+        self.assertIn(f" {porosity:.3f} |", r.stdout)
+        self.assertNotIn("(0.35)", r.stdout)
+        self.assertIn("NOT comparable with the paper's numbers", r.stdout)
         self.assertIn("| quantity | spheres-r1 | T2S1-r1 |", r.stdout)
 
     def test_a_file_that_is_not_an_archive_is_refused_clearly(self):
