@@ -398,8 +398,16 @@ PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
   } else {
     out.sim.move_wall(lid_of(out.sim), Vec3(0, 0, s.height));
   }
+  // A plate that never reached the bed (an imported packing stopped before any step)
+  // is put away without a stage: nothing bears on it, and the bed stays as it came.
   const auto lift = [&] {
-    if (plate) out.stages.push_back(lift_plate(out.sim, *plate, s, log));
+    if (!plate) return;
+    if (lid_touches(out.sim)) {
+      out.stages.push_back(lift_plate(out.sim, *plate, s, log));
+      return;
+    }
+    out.sim.release_servo(*plate);
+    out.sim.move_wall(lid_of(out.sim), Vec3(0, 0, s.height));
   };
   if (s.frictionless_settling) {
     // The sample settles into its dense state still frictionless, as a radius-
