@@ -1,54 +1,215 @@
 #!/usr/bin/python3
-"""Our box-test figures beside Lu & McDowell (2007)'s, as a Markdown table.
+"""The full-scale paper study judged against Lu & McDowell (2007): the tables of
+docs/VALIDATION.md, from the archive of `ballast study cases/paper_study.json`.
 
-    /usr/bin/python3 scripts/validation.py spheres=runs/spheres.h5 sample1=runs/sample1.h5
+    /usr/bin/python3 scripts/validation.py paper.h5 [--csv DIR]
 
-Each argument is NAME=ARCHIVE, NAME one of spheres, sample1, sample2; an archive is
-a `ballast run -o` file (group /run) or a study archive's run group given as
-ARCHIVE:/runs/ID. The paper's numbers are from its Figs 11-18 and section 3.3
-(scripts/paper_values.py); the rows are scripts/compare.py's, one run per table.
+Prints, in Markdown,
+  1. the goals a researcher checks our tool against (the paper's headline findings
+     and its box), each with what we measure over the replicates and whether it holds;
+  2. the key quantities per sample: mean ± half-width of the 95 % interval over the
+     replicates (scripts/replicates.py), the spread of the runs, the paper's number;
+  3. how each run's seating ended (equilibrium, steady creep, step limit) and its
+     wall time.
+`--csv DIR` also writes the key-quantity table as DIR/paper_study.csv. Every number
+comes from the archive; the paper's from scripts/paper_values.py. scripts/compare.py
+prints every quantity of every run, with the same statistics.
 """
+import argparse
+import csv
+import datetime
+import os
 import sys
 
 from ballast_archive import ArchiveError, open_archive
 from compare import quantities
-from paper_values import PAPER, paper_text
+from paper_values import paper_sample
+from replicates import group_runs, ratio_of_means, summarize
+
+KM = 1e-3
+# Key quantities: (compare.py key, label, format).
+KEY_ROWS = (
+    ("porosity_grid", "porosity, 5 mm grid under the sleeper", "{:.3f}"),
+    ("contacts_before_sleeper_bodies", "particles bearing the sleeper, preload", "{:.1f}"),
+    ("contacts_peak_sleeper_bodies", "particles bearing the sleeper, 40 kN", "{:.1f}"),
+    ("contacts_peak_max_force_N", "largest contact force at 40 kN (N)", "{:,.0f}"),
+    ("contacts_peak_force_p50_N", "median ball–ball force at 40 kN (N)", "{:,.0f}"),
+    ("rotation_loading_mean_deg", "rotation, loading: mean (°)", "{:.3g}"),
+    ("rotation_loading_max_deg", "rotation, loading: max (°)", "{:.3g}"),
+    ("rotation_unloading_mean_deg", "rotation, unloading: mean (°)", "{:.3g}"),
+    ("rotation_cycle_mean_deg", "rotation, cycle: mean (°)", "{:.3g}"),
+    ("rotation_cycle_max_deg", "rotation, cycle: max (°)", "{:.3g}"),
+    ("max_displacement_peak_mm", "max displacement at peak (mm)", "{:.3g}"),
+    ("max_displacement_after_mm", "max displacement after the cycle (mm)", "{:.3g}"),
+    ("settlement_peak_mm", "sleeper settlement at peak (mm)", "{:.3g}"),
+    ("permanent_settlement_mm", "permanent settlement (mm)", "{:.3g}"),
+    ("resilient_settlement_mm", "resilient settlement (mm)", "{:.3g}"),
+    ("zone_beneath_dz_peak_mm", "top layer beneath: dz at peak (mm, up +)", "{:.3g}"),
+    ("zone_beneath_dz_unloading_mm", "top layer beneath: dz on unloading (mm)", "{:.3g}"),
+    ("zone_beside_dz_peak_mm", "top layer beside: dz at peak (mm)", "{:.3g}"),
+    ("zone_beside_dz_unloading_mm", "top layer beside: dz on unloading (mm)", "{:.3g}"),
+)
+PAPER_POROSITY = {"spheres": 0.37, "sample1": 0.35, "sample2": 0.37}
+PAPER_MAX_FORCE_N = 4233.0  # Sample 1 at 40 kN (Fig. 12); spheres 4,050 (Fig. 11)
 
 
-def open_run(spec):
-    path, _, group = spec.partition(":")
-    archive = open_archive(path)
-    return archive.run(group.rsplit("/", 1)[-1]) if group else archive.runs()[0]
+def table_of(group):
+    """{run id: {key: value}} of compare.quantities for the group's runs."""
+    return {r.id: {k: v for k, _, v, _, _ in quantities(r)} for r in group.runs}
 
 
-def row(label, ours, paper, fmt):
-    p = "—" if paper is None else paper_text(paper)
-    return f"| {label} | {fmt.format(ours)} | {p} |"
+def stat(group, key):
+    t = table_of(group)
+    return summarize([t[r.id].get(key) for r in group.runs])
 
 
-def table(name, run):
-    a = run.attrs
-    lines = [f"### {name} ({int(a['bodies'])} bodies, {int(a['balls'])} balls, "
-             f"dt {a['dt'] * 1e6:.3f} µs, {a['wall_seconds'] / 60:.1f} min on the run's machine)",
-             "", "| quantity | ours | paper |", "|---|---|---|"]
-    lines += [row(label, ours, paper, fmt)
-              for _, label, ours, paper, fmt in quantities(run, PAPER[name])]
-    return "\n".join(lines)
+def interval(s, fmt):
+    if s.mean is None:
+        return "—"
+    if s.low is None:
+        return f"{fmt.format(s.mean)} (n {s.n})"
+    return f"{fmt.format(s.mean)} [{fmt.format(s.low)}, {fmt.format(s.high)}]"
 
 
-def main():
-    if len(sys.argv) < 2:
-        sys.exit(__doc__)
-    for arg in sys.argv[1:]:
-        name, _, spec = arg.partition("=")
-        if name not in PAPER:
-            sys.exit(f"unknown sample name '{name}' (allowed: {', '.join(PAPER)})")
-        try:
-            print(table(name, open_run(spec)))
-        except ArchiveError as e:
-            sys.exit(f"validation.py: {e}")
-        print()
+def seating(run):
+    """(how the seating ended, its final unbalanced-force ratio)."""
+    stages = run.group["stages"]
+    name = next((k for k in stages if k.endswith("_preload")), None)
+    if name is None:
+        return ("not seated", None)
+    a = stages[name].attrs
+    ended = a["ended_by"]
+    return (ended.decode() if isinstance(ended, bytes) else ended, float(a["unbalanced"]))
+
+
+def goals(groups):
+    """Rows (goal, measured, holds) of the issue's goals."""
+    by = {paper_sample(g.runs[0]): g for g in groups}
+    rows = []
+    spheres, s1 = by.get("spheres"), by.get("sample1")
+    clumps = [g for g in groups if g.is_clumps]
+    if spheres and s1:
+        r = ratio_of_means(stat(spheres, "rotation_loading_mean_deg"),
+                           stat(s1, "rotation_loading_mean_deg"))
+        text = (f"{r.value:.1f} [{r.low:.1f}, {r.high:.1f}]" if r.low is not None
+                else f"{r.value:.1f} ({r.note})")
+        rows.append(("spheres / Sample 1 mean rotation during loading ≥ 20 (paper 85)", text,
+                     "yes" if r.value >= 20 else "no"))
+    for g in clumps:
+        t = table_of(g)
+        res = [t[x.id]["resilient_settlement_mm"] for x in g.runs]
+        rows.append((f"{g.name}: rebounds in every replicate (resilient settlement > 0)",
+                     ", ".join(f"{v:.3f}" for v in res) + " mm",
+                     "yes" if all(v > 0 for v in res) else "no"))
+        pairs = [(t[x.id]["rotation_cycle_max_deg"], t[x.id]["rotation_loading_max_deg"])
+                 for x in g.runs]
+        rows.append((f"{g.name}: cycle's largest rotation below the loading's, every replicate",
+                     ", ".join(f"{c:.2f} vs {ld:.2f}°" for c, ld in pairs),
+                     "yes" if all(c < ld for c, ld in pairs) else "no"))
+        s = stat(g, "zone_beneath_dz_peak_mm")
+        rows.append((f"{g.name}: top layer beneath the sleeper sinks at peak",
+                     interval(s, "{:.3f}") + " mm",
+                     "yes" if s.high is not None and s.high < 0 else
+                     "not resolved" if s.mean is not None and s.mean < 0 else "no"))
+    if spheres:
+        s = stat(spheres, "zone_beside_dz_peak_mm")
+        rows.append(("spheres: top layer beside the sleeper rises at peak",
+                     interval(s, "{:.3f}") + " mm",
+                     "yes" if s.low is not None and s.low > 0 else
+                     "not resolved" if s.mean is not None and s.mean > 0 else "no"))
+    for g in groups:
+        t = table_of(g)
+        bodies = [t[x.id].get("contacts_peak_sleeper_bodies") for x in g.runs]
+        force = [t[x.id]["contacts_peak_max_force_N"] for x in g.runs]
+        ok = all(b is not None and b >= 20 for b in bodies) and all(
+            PAPER_MAX_FORCE_N / 2 <= f <= 2 * PAPER_MAX_FORCE_N for f in force)
+        rows.append((f"{g.name}: sleeper on ≥ 20 particles at 40 kN, largest force within 2× "
+                     "of 4.2 kN", ", ".join(f"{b} / {f * KM:.1f} kN" for b, f in
+                                           zip(bodies, force)), "yes" if ok else "no"))
+        sample = paper_sample(g.runs[0])
+        if sample in PAPER_POROSITY:
+            s = stat(g, "porosity_grid")
+            p = PAPER_POROSITY[sample]
+            rows.append((f"{g.name}: porosity within ±0.03 of {p}", interval(s, "{:.3f}"),
+                         "yes" if abs(s.mean - p) <= 0.03 else "no"))
+        ends = [seating(x) for x in g.runs]
+        rows.append((f"{g.name}: at rest under the preload (seating ended by equilibrium)",
+                     ", ".join(f"{e} ({u:.4f})" if u is not None else e for e, u in ends),
+                     "yes" if all(e == "equilibrium" for e, _ in ends) else "no"))
+    return rows
+
+
+def study_hours(runs):
+    """Wall time from the first run's start to the last one's end, h."""
+    def when(run, name):
+        return datetime.datetime.fromisoformat(str(run.attribute(name)).replace("Z", "+00:00"))
+    try:
+        start = min(when(r, "started") for r in runs)
+        end = max(when(r, "finished") for r in runs)
+    except (ArchiveError, ValueError):
+        return None
+    return (end - start).total_seconds() / 3600.0
+
+
+def key_table(groups):
+    """(label, [cell per group]) rows and the CSV rows of the key quantities."""
+    md, rows = [], []
+    for key, label, fmt in KEY_ROWS:
+        cells = []
+        for g in groups:
+            s = stat(g, key)
+            paper = next((p for k, _, _, p, _ in quantities(g.runs[0]) if k == key), None)
+            cell = interval(s, fmt)
+            if s.values:
+                cell += f", runs {fmt.format(min(s.values))}–{fmt.format(max(s.values))}"
+            if paper is not None:
+                cell += f" (paper {paper:g})"
+            cells.append(cell)
+            rows.append({"sample": g.name, "quantity": key, "n": s.n, "mean": s.mean,
+                         "low": s.low, "high": s.high, "paper": paper})
+        md.append(f"| {label} | " + " | ".join(cells) + " |")
+    return md, rows
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("archive")
+    parser.add_argument("--csv", metavar="DIR", help="also write DIR/paper_study.csv")
+    args = parser.parse_args(argv)
+    try:
+        with open_archive(args.archive) as archive:
+            runs = archive.select()
+            groups = group_runs([r for r in runs if r.loaded])
+            print("## Goals\n\n| goal | measured (mean [95 % interval] or per run) | holds |"
+                  "\n|---|---|---|")
+            for goal, measured, holds in goals(groups):
+                print(f"| {goal} | {measured} | {holds} |")
+            hours = study_hours(runs)
+            if hours is not None:
+                print(f"| the study fits in one night on 2 cores | {hours:.2f} h | "
+                      f"{'yes' if hours <= 10 else 'no'} |")
+            md, rows = key_table(groups)
+            print("\n## Key quantities\n\nMean [95 % interval] over the replicates, the "
+                  "runs' range, (the paper's number).\n")
+            print("| quantity | " + " | ".join(f"{g.name} (n {len(g.runs)})" for g in groups)
+                  + " |\n|---|" + "---|" * len(groups))
+            print("\n".join(md))
+            print("\n## Runs\n\n| run | seating ended by (ratio) | wall time (min) |\n|---|---|---|")
+            for r in runs:
+                e, u = seating(r)
+                ratio = f" ({u:.4f})" if u is not None else ""
+                print(f"| {r.id} | {e}{ratio} | {float(r.attribute('wall_seconds')) / 60:.1f} |")
+            if args.csv:
+                os.makedirs(args.csv, exist_ok=True)
+                with open(os.path.join(args.csv, "paper_study.csv"), "w", newline="") as f:
+                    w = csv.DictWriter(f, fieldnames=list(rows[0]))
+                    w.writeheader()
+                    w.writerows(rows)
+    except ArchiveError as e:
+        print(f"validation.py: {e}", file=sys.stderr)
+        return 1
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())
