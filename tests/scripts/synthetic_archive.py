@@ -28,9 +28,11 @@ GAPS = (0.0, 1e-6, 1e-4, 1e-3)  # near_gap, m
 
 
 def run(run_id, sample, shape, replicate=1, bodies=PARTICLES, balls=None, zones=None,
-        **attrs):
-    """A run to write. zones: {"beneath": (dz_peak, dz_end), "beside": (...)} in m."""
+        seating="equilibrium", **attrs):
+    """A run to write. zones: {"beneath": (dz_peak, dz_end), "beside": (...)} in m;
+    seating: how its preload stage ended."""
     return {"id": run_id, "sample": sample, "shape": shape, "replicate": replicate,
+            "seating": seating,
             "bodies": bodies, "balls": balls or (bodies if shape == "spheres" else 10 * bodies),
             "zones": zones or {"beneath": (-2e-4, -1e-4), "beside": (1e-4, 2e-4)},
             "attrs": attrs}
@@ -112,6 +114,10 @@ def _run_group(parent, name, index, spec, scene, new_fields):
                                ("sleeper_force", force, "N"),
                                ("settlement", 1e-3 * np.sin(np.pi * t / 0.03), "m")):
         _dataset(g.require_group("series"), name, value, units)
+    for k, (stage, ended, ratio) in enumerate((("compact", "equilibrium", 4e-3),
+                                               ("preload", spec["seating"], 4.5e-3))):
+        st = g.require_group("stages").create_group(f"{k + 1:02d}_{stage}")
+        st.attrs.update({"ended_by": ended, "unbalanced": ratio, "steps": 1000})
     if new_fields:
         _zones(g, spec, 0.16)
 
