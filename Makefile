@@ -30,7 +30,7 @@ run: configure
 	@rm -rf results/default.h5 results/default.h5.parts
 	@status=0; $(BUILD)/study/ballast study cases/default_study.json -o results/default.h5 || status=$$?; \
 	  if [ $$status -ne 0 ] && [ $$status -ne 3 ]; then exit $$status; fi; \
-	  echo; echo "Beside the paper (Lu & McDowell 2007; ours, paper in brackets):"; \
+	  echo; echo "Beside the paper (Lu & McDowell 2007), with the scale each run is at:"; \
 	  /usr/bin/python3 scripts/compare.py results/default.h5 || exit $$?; echo; \
 	  /usr/bin/python3 scripts/figures.py results/default.h5 --out results/ || exit $$?; \
 	  exit $$status
