@@ -68,7 +68,7 @@ struct BoxTestScene {
   double frequency = 3.0;                              // Hz
   long cycles = 1;
   double sleeper_max_speed = 0.5;  // m/s, servo cap
-  double sleeper_gain = 0.5;       // servo gain (engine/servo.hpp); 0.5 tracked best of 0.1-1
+  double sleeper_gain = 0.5;       // servo gain (engine/servo.hpp; docs/BOX_TEST.md)
   // measurements
   double cube_side = 0.005;     // m, the paper's porosity grid
   double sphere_radius = 0.05;  // m, measurement spheres
