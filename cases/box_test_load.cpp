@@ -92,7 +92,7 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, s
        ++k)
     sim.step();
   out.stages.push_back(settle(sim, "preload", s.equilibrium_ratio, s.max_stage_steps, log,
-                              SettleRule::kSeated,
+                              s.seating_creep_rule ? SettleRule::kSeated : SettleRule::kRatio,
                               [&sim, wall] { return -sim.walls()[wall].displacement.z(); }));
   if (log) {
     const SleeperBearing b = snapshot_contacts(sim, wall).sleeper;

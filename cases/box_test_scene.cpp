@@ -134,6 +134,7 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& j, const std::string& sc
     for (const char* key : {"initial_porosity", "expansion_speed"})
       refuse_with_file(top.object("preparation"), key, "/preparation");
   p.boolean("frictionless_settling", s.frictionless_settling);
+  p.boolean("seating_creep_rule", s.seating_creep_rule);
   const bool levelling_given =
       p.number("levelling_pressure", s.levelling_pressure, "in [0, 1e6] Pa",
                [](double v) { return v >= 0.0 && v <= 1e6; });

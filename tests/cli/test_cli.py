@@ -135,6 +135,23 @@ class RunCommand(unittest.TestCase):
                 self.assertGreater(s["contacts_peak"]["mean_force_N"],
                                    s["contacts_before"]["mean_force_N"])
 
+    def test_seating_creep_rule_can_be_turned_off(self):
+        # The smoke sphere bed creeps under the preload and its seating ends by the
+        # creep rule; without the rule the same bed seats until equilibrium or the
+        # step limit, the stages before it unchanged.
+        def preload(summary):
+            return next(st for st in summary["stages"] if st["name"] == "preload")
+        self.assertEqual(preload(self.spheres)["ended_by"], "steady creep")
+        r = ballast("run", os.path.join(CASES, "box_test", "smoke.json"), "--json",
+                    "--threads", "1", "--set", "/preparation/seating_creep_rule=false")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s = json.loads(r.stdout)
+        self.assertIn(preload(s)["ended_by"], ("equilibrium", "step limit"))
+        self.assertGreater(preload(s)["steps"], preload(self.spheres)["steps"])
+        seated = [st["name"] for st in s["stages"]].index("preload")
+        self.assertEqual([st["steps"] for st in s["stages"][:seated]],
+                         [st["steps"] for st in self.spheres["stages"][:seated]])
+
     def test_clumps_rotate_less_than_spheres(self):
         # The paper's central finding (Figs 13-14): interlocking clumps turn far less
         # than spheres under the same load. Measured here: 0.06 against 0.44 degrees
