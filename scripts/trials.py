@@ -30,7 +30,7 @@ COLUMNS = (  # (compare.py key, header, format)
     ("zone_beneath_dz_peak_mm", "beneath dz (mm)", "{:.3g}"),
     ("zone_beside_dz_peak_mm", "beside dz (mm)", "{:.3g}"),
 )
-KN = {"contacts_peak_max_force_N"}  # shown in kN
+KN = {"contacts_peak_max_force_N"}  # shown in kN in the table, N in the CSV
 
 
 def row(label, path):
@@ -40,9 +40,6 @@ def row(label, path):
         raise ArchiveError(f"{path}: {len(runs)} runs with status ok; a trial is one run")
     run = runs[0]
     values = {k: v for k, _, v, _, _ in quantities(run)}
-    for k in KN:
-        if values.get(k) is not None:
-            values[k] *= 1e-3
     ended, ratio = seating(run)
     seat = ended if ratio is None else f"{ended} ({ratio:.2g})"
     return label, seat, values
@@ -67,7 +64,8 @@ def main(argv=None):
     print("| " + " | ".join(header) + " |")
     print("|" + "---|" * len(header))
     for label, seat, values in rows:
-        cells = [label, seat] + ["—" if values.get(k) is None else f.format(values[k])
+        cells = [label, seat] + ["—" if values.get(k) is None else
+                                 f.format(values[k] * (1e-3 if k in KN else 1.0))
                                  for k, _, f in COLUMNS]
         print("| " + " | ".join(cells) + " |")
     if args.csv:

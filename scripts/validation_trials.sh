@@ -38,12 +38,13 @@ trial sph_fric spheres.json --set /preparation/frictionless_settling=false
 trial s1_fric sample1.json --set /preparation/frictionless_settling=false
 # A base 100 times stiffer than the paper's rubber.
 trial sph_base100 spheres.json --set /materials/base_stiffness=2.54e8
-# A slower cycle (1 Hz) and a compaction at 1 g instead of 10 g.
+# The seating without its creep rule: equilibrium or the step limit.
+trial sph_nocreep spheres.json --set /preparation/seating_creep_rule=false
+# A slower cycle: 1 Hz instead of 3.
 trial sph_1Hz spheres.json --set /sleeper/frequency=1
-trial sph_g1 spheres.json --set /preparation/gravity_factor=1
 
 labels=()
-for name in sph_ref sph_free sph_10kPa sph_fric sph_base100 sph_1Hz sph_g1 \
+for name in sph_ref sph_free sph_10kPa sph_fric sph_base100 sph_nocreep sph_1Hz \
             s1_ref s1_free s1_fric; do
   labels+=("$name=$dir/$name.h5")
 done

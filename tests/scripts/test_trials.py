@@ -57,6 +57,11 @@ class TrialsTable(unittest.TestCase):
         self.assertAlmostEqual(float(rows[1]["resilient_settlement_mm"]), 0.02, places=9)
         self.assertAlmostEqual(float(rows[1]["settlement_peak_mm"]), 2.7, places=9)
         self.assertAlmostEqual(float(rows[0]["rotation_loading_mean_deg"]), 0.85, places=12)
+        # The CSV keeps the archive's units under the archive's names: N, not kN.
+        force = float(rows[0]["contacts_peak_max_force_N"])
+        self.assertGreater(force, 10.0)
+        cell = lines[2].split("|")[5].strip()
+        self.assertAlmostEqual(float(cell), force * 1e-3, delta=0.051)
 
     def test_bad_arguments_are_refused_with_their_name(self):
         r = trials("no-equals-sign")
