@@ -1,7 +1,7 @@
 #!/bin/bash
 # The trials behind docs/VALIDATION.md's "What was tried": full-scale box tests of
 # seed 1, each changing one thing in the preparation or the loading, one thread each,
-# one after another (about 2.5 hours on one core), then their table.
+# one after another (about 2 hours on one core), then their table.
 #
 #   bash scripts/validation_trials.sh [DIR]      (default DIR: results/trials)
 #
