@@ -8,7 +8,7 @@
 // step both wait for what is stolen from either, while two independent copies each
 // lose only their own. bench-bed --scaling reports the share beside the speed-up it
 // measured, so that a figure can be read against the host (docs/PERFORMANCE.md,
-// "Where the goals stand: the peers at 30d550c, and the host's steal").
+// "The host's steal").
 #pragma once
 
 #include <optional>
