@@ -49,6 +49,23 @@ TEST(Walls, ServoHoldsTheTargetForce) {
   EXPECT_NEAR(w.sim.wall_force(0).z(), -target, 1e-3 * target);
 }
 
+TEST(Walls, ReleasedServoLeavesItsWallStandingUnderTheLoadItHeld) {
+  const double target = 500.0;  // N
+  Sandwich w = sandwich([=](double) { return target; });
+  w.sim.run(60000);
+  const double z = w.sim.walls()[w.lid].point.z();
+  w.sim.release_servo(0);
+  EXPECT_TRUE(w.sim.servos().empty());
+  EXPECT_EQ(w.sim.walls()[w.lid].velocity, Vec3::Zero());
+  // Held still, the lid keeps the ball squeezed: its force stays near the target
+  // (the ball settles a little without the servo's correction) and the lid does
+  // not move, where a servo left running would follow any change of the load.
+  w.sim.run(20000);
+  EXPECT_EQ(w.sim.walls()[w.lid].point.z(), z);
+  EXPECT_NEAR(w.sim.wall_force(w.lid).z(), target, 0.02 * target);
+  EXPECT_THROW(w.sim.release_servo(0), SetupError);
+}
+
 TEST(Walls, SinusoidalLoadRunsFromMinimumToMaximumAndBack) {
   const auto f = sinusoidal_load(3e3, 40e3, 3.0, 0.0);
   EXPECT_NEAR(f(0.0), 3e3, 1e-9);
