@@ -1,6 +1,12 @@
 // Small scene builders shared by the verification tests.
 #pragma once
 
+#include <gtest/gtest.h>
+
+#include <initializer_list>
+#include <string>
+
+#include "engine/errors.hpp"
 #include "engine/simulation.hpp"
 
 namespace ballast::scenes {
@@ -31,3 +37,22 @@ inline Wall plane_wall(const Vec3& point, const Vec3& normal, const Material& m)
 }
 
 }  // namespace ballast::scenes
+
+namespace ballast::test_support {
+
+// Runs f and expects it to throw E (SetupError unless named) with a message that
+// contains every fragment: the field, the value, what is allowed. Passes nothing
+// when f returns normally or throws something else.
+template <class E = SetupError, class F>
+void expect_error(F&& f, std::initializer_list<const char*> fragments) {
+  try {
+    f();
+    ADD_FAILURE() << "nothing was thrown";
+  } catch (const E& e) {
+    for (const char* frag : fragments)
+      EXPECT_NE(std::string(e.what()).find(frag), std::string::npos)
+          << "message '" << e.what() << "' lacks '" << frag << "'";
+  }
+}
+
+}  // namespace ballast::test_support

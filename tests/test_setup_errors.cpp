@@ -7,32 +7,17 @@
 
 using namespace ballast;
 
-namespace {
-
-// Runs f, expects a SetupError whose message contains every fragment.
-template <class F>
-void expect_setup_error(F&& f, std::initializer_list<const char*> fragments) {
-  try {
-    f();
-    ADD_FAILURE() << "no SetupError";
-  } catch (const SetupError& e) {
-    for (const char* frag : fragments)
-      EXPECT_NE(std::string(e.what()).find(frag), std::string::npos)
-          << "message '" << e.what() << "' lacks '" << frag << "'";
-  }
-}
-
-}  // namespace
+using ballast::test_support::expect_error;
 
 TEST(SetupErrors, NegativeStiffness) {
   Simulation sim(scenes::bare_settings());
-  expect_setup_error([&] { sim.add_material({-5.0, 1e6, 0.3}); }, {"kn", "-5", "> 0"});
+  expect_error([&] { sim.add_material({-5.0, 1e6, 0.3}); }, {"kn", "-5", "> 0"});
 }
 
 TEST(SetupErrors, BallOutsideTheDomain) {
   Simulation sim(scenes::bare_settings(1.0));
   const Index mat = sim.add_material({1e6, 1e6, 0.3});
-  expect_setup_error([&] { sim.add_sphere(Vec3(0, 0, 3.0), 0.01, 2600, mat); },
+  expect_error([&] { sim.add_sphere(Vec3(0, 0, 3.0), 0.01, 2600, mat); },
                      {"ball position", "(0, 0, 3)", "inside the domain"});
 }
 
@@ -43,21 +28,21 @@ TEST(SetupErrors, NonPositiveTimestep) {
     Simulation sim(s);
     const Index mat = sim.add_material({1e6, 1e6, 0.3});
     sim.add_sphere(Vec3::Zero(), 0.01, 2600, mat);
-    expect_setup_error([&] { sim.prepare(); }, {"dt", "> 0 s"});
+    expect_error([&] { sim.prepare(); }, {"dt", "> 0 s"});
   }
 }
 
 TEST(SetupErrors, RadiusDensityMaterialAndWalls) {
   Simulation sim(scenes::bare_settings());
   const Index mat = sim.add_material({1e6, 1e6, 0.3});
-  expect_setup_error([&] { sim.add_sphere(Vec3::Zero(), 0.0, 2600, mat); }, {"radius", "> 0"});
-  expect_setup_error([&] { sim.add_sphere(Vec3::Zero(), 0.01, -1, mat); }, {"density"});
-  expect_setup_error([&] { sim.add_sphere(Vec3::Zero(), 0.01, 2600, 7); }, {"material", "7"});
+  expect_error([&] { sim.add_sphere(Vec3::Zero(), 0.0, 2600, mat); }, {"radius", "> 0"});
+  expect_error([&] { sim.add_sphere(Vec3::Zero(), 0.01, -1, mat); }, {"density"});
+  expect_error([&] { sim.add_sphere(Vec3::Zero(), 0.01, 2600, 7); }, {"material", "7"});
   Wall w = scenes::plane_wall(Vec3::Zero(), Vec3::UnitZ(), {1e6, 1e6, 0.3});
   w.normal = Vec3(0, 0, 2);
-  expect_setup_error([&] { sim.add_wall(w); }, {"normal", "unit"});
-  expect_setup_error([&] { sim.set_all_friction(-0.1); }, {"mu", "-0.1"});
-  expect_setup_error([] { Simulation bad(scenes::bare_settings(-1.0)); }, {"domain"});
+  expect_error([&] { sim.add_wall(w); }, {"normal", "unit"});
+  expect_error([&] { sim.set_all_friction(-0.1); }, {"mu", "-0.1"});
+  expect_error([] { Simulation bad(scenes::bare_settings(-1.0)); }, {"domain"});
 }
 
 TEST(SetupErrors, UnknownContactModelListsTheRegisteredOnes) {
@@ -66,7 +51,7 @@ TEST(SetupErrors, UnknownContactModelListsTheRegisteredOnes) {
   Simulation sim(s);
   const Index mat = sim.add_material({1e6, 1e6, 0.3});
   sim.add_sphere(Vec3::Zero(), 0.01, 2600, mat);
-  expect_setup_error([&] { sim.prepare(); }, {"contact_model", "'hertz'", "linear"});
+  expect_error([&] { sim.prepare(); }, {"contact_model", "'hertz'", "linear"});
 }
 
 TEST(SetupErrors, BlowUpNamesStepBodyAndQuantityAndKeepsTheState) {
