@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "test_helpers.hpp"
 
@@ -10,7 +11,7 @@ using namespace ballast;
 
 TEST(Sliding, SlipStopsAtFiveSeventhsOfLaunchSpeed) {
   const double r = 0.02, rho = 2600.0, g = 9.81, k = 1e7, mu = 0.3, v0 = 1.0;
-  SimulationSettings s = scenes::bare_settings(5.0);
+  SimulationSettings s = scenes::bare_settings(0.5);
   s.gravity = Vec3(0, 0, -g);
   s.fixed_dt = 1e-6;
   Simulation sim(s);
@@ -18,7 +19,7 @@ TEST(Sliding, SlipStopsAtFiveSeventhsOfLaunchSpeed) {
   sim.add_wall(scenes::plane_wall(Vec3::Zero(), Vec3::UnitZ(), {2 * k, 2 * k, mu}));
   const double m = scenes::sphere_mass(r, rho);
   // Start at the static overlap so the normal force is m·g from the first step.
-  const Index b = sim.add_sphere(Vec3(-2.0, 0, r - m * g / k), r, rho, mat);
+  const Index b = sim.add_sphere(Vec3(-0.4, 0, r - m * g / k), r, rho, mat);
   sim.set_body_velocity(b, Vec3(v0, 0, 0));
   // Sliding lasts t = 2·v0/(7·mu·g) ≈ 0.097 s; run twice that.
   const double t_slide = 2 * v0 / (7 * mu * g);
@@ -33,14 +34,14 @@ TEST(Sliding, SlipStopsAtFiveSeventhsOfLaunchSpeed) {
 // sphere slips, its deceleration is exactly mu·g, so the change shows at once.
 TEST(Sliding, FrictionChangeTakesEffectMidRun) {
   const double r = 0.02, rho = 2600.0, g = 9.81, k = 1e7, v0 = 2.0, dt = 1e-6;
-  SimulationSettings s = scenes::bare_settings(5.0);
+  SimulationSettings s = scenes::bare_settings(0.5);
   s.gravity = Vec3(0, 0, -g);
   s.fixed_dt = dt;
   Simulation sim(s);
   const Index mat = sim.add_material({2 * k, 2 * k, 0.3});
   sim.add_wall(scenes::plane_wall(Vec3::Zero(), Vec3::UnitZ(), {2 * k, 2 * k, 0.3}));
   const double m = scenes::sphere_mass(r, rho);
-  const Index b = sim.add_sphere(Vec3(-2.0, 0, r - m * g / k), r, rho, mat);
+  const Index b = sim.add_sphere(Vec3(-0.4, 0, r - m * g / k), r, rho, mat);
   sim.set_body_velocity(b, Vec3(v0, 0, 0));
   sim.run(50000);  // 0.05 s at mu = 0.3 (slip would last 2·v0/(7·0.3·g) = 0.19 s)
   const double v1 = sim.bodies().velocity[b].x();
@@ -49,6 +50,36 @@ TEST(Sliding, FrictionChangeTakesEffectMidRun) {
   sim.run(50000);  // 0.05 s at mu = 0.5, still slipping
   const double v2 = sim.bodies().velocity[b].x();
   EXPECT_NEAR(v1 - v2, 0.5 * g * 0.05, 0.01 * 0.5 * g * 0.05);
+}
+
+// Two materials: a contact slips at the smaller of the two friction coefficients
+// (engine/material.hpp, contact_friction; PFC's rule). A sphere of μ 0.6 on a wall
+// of μ 0.3, and one of μ 0.3 on a wall of μ 0.6, both slow at 0.3·g while slipping.
+// Mutations caught: min swapped for max (0.6·g), or the wall's μ ignored (0.6·g on
+// the first; tests/mutations.tsv).
+TEST(Sliding, TwoMaterialsSlipAtTheSmallerFriction) {
+  const double r = 0.02, rho = 2600.0, g = 9.81, k = 1e7, v0 = 2.0, dt = 1e-6;
+  for (const auto& [mu_ball, mu_wall] : {std::pair{0.6, 0.3}, std::pair{0.3, 0.6}}) {
+    SimulationSettings s = scenes::bare_settings(0.5);
+    s.gravity = Vec3(0, 0, -g);
+    s.fixed_dt = dt;
+    Simulation sim(s);
+    const Index mat = sim.add_material({2 * k, 2 * k, mu_ball});
+    sim.add_wall(scenes::plane_wall(Vec3::Zero(), Vec3::UnitZ(), {2 * k, 2 * k, mu_wall}));
+    const double m = scenes::sphere_mass(r, rho);
+    const Index b = sim.add_sphere(Vec3(-0.4, 0, r - m * g / k), r, rho, mat);
+    sim.set_body_velocity(b, Vec3(v0, 0, 0));
+    sim.run(50000);  // 0.05 s; at 0.3·g slip lasts 2·v0/(7·0.3·g) = 0.19 s
+    const double slowed = v0 - sim.bodies().velocity[b].x();
+    EXPECT_NEAR(slowed, 0.3 * g * 0.05, 0.01 * 0.3 * g * 0.05)
+        << "ball mu " << mu_ball << " on wall mu " << mu_wall;
+  }
+  // Ball on ball: the pair table the force loop reads holds the same rule.
+  PairTable pairs;
+  pairs.build({Material{1e7, 1e7, 0.6}, Material{1e7, 1e7, 0.3}}, {});
+  EXPECT_EQ(pairs.balls(0, 1).mu, 0.3);
+  EXPECT_EQ(pairs.balls(1, 0).mu, 0.3);
+  EXPECT_EQ(pairs.balls(0, 0).mu, 0.6);
 }
 
 // PFC drops a contact's shear force when the contact breaks. A neighbour rebuild
