@@ -1,10 +1,14 @@
 // Force-controlled walls (the sleeper), after PFC's and YADE's servo mechanism.
 // Every step the servo measures the force the balls push back on its walls along
 // its axis and sets the walls' common velocity
-//     u = G·(F_target − F_measured),   G = gain / (K_walls·dt),
-// with K_walls the summed normal stiffness of the walls' active contacts. With
-// gain = 1 the wall would remove the whole force error in one step if the bed were
-// a set of independent springs; 0.5 (the default) halves it, which is stable. The
+//     u = G·(F_target − F_measured),   G = gain / (K_walls·dt + C_walls),
+// with K_walls the summed normal stiffness of the walls' active contacts and C_walls
+// their summed normal dashpot coefficients (zero without contact dashpots): what
+// the measured force changes by, per unit of u, at the next step. With gain = 1 the
+// wall would remove the whole force error in one step if the bed were a set of
+// independent springs; 0.5 (the default) halves it, which is stable; with dashpots
+// the error obeys e' = (1 − gain)·e + gain·φ·e_prev, φ = C/(K·dt + C) < 1, whose
+// roots lie inside the unit circle for every gain in (0, 1]. The
 // speed is capped at max_speed so the wall cannot jump through the bed when it has
 // no contacts yet.
 #pragma once

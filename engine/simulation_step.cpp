@@ -62,19 +62,30 @@ void Simulation::sum_wall_forces(std::vector<Vec3>& force) const {
 
 void Simulation::drive_walls() {
   for (Servo& s : servos_) {
-    double measured = 0.0, stiffness = 0.0;
+    // The measured force answers a wall speed u with K·u·dt through the contacts'
+    // springs and with C·u through their normal dashpots, both by the next step; the
+    // law divides by both. Divided by K·dt alone, a contact whose dashpot outweighs
+    // its spring's step (C > K·dt/gain) made the wall overshoot every step: a
+    // levelling plate on a bed settling with dashpots (β = 0.3) chattered at its
+    // speed cap, its force swinging from 0 to 66 kN around a 2.1 kN target.
+    double measured = 0.0, stiffness = 0.0, dashpots = 0.0;
+    const double beta = settings_.damping_ratio;
     for (Index w : s.walls) measured -= wall_force_[w].dot(s.axis);
     for (Index c = 0; c < wall_contacts_.size(); ++c) {
       if (!wall_contacts_.active[c]) continue;
       for (Index w : s.walls)
-        if (wall_contacts_.b[c] == w)
-          stiffness += series_stiffness(materials_[balls_.material[wall_contacts_.a[c]]].kn,
-                                        walls_[w].material.kn);
+        if (wall_contacts_.b[c] == w) {
+          const Index ball = wall_contacts_.a[c];
+          const double kn = series_stiffness(materials_[balls_.material[ball]].kn,
+                                             walls_[w].material.kn);
+          stiffness += kn;
+          if (beta > 0.0) dashpots += dashpot_coefficient(beta, bodies_.mass[balls_.body[ball]], kn);
+        }
     }
     s.measured_force = measured;
     s.target_now = s.target_force(time_);
     const double error = s.target_now - measured;
-    double speed = stiffness > 0.0 ? s.gain * error / (stiffness * dt_)
+    double speed = stiffness > 0.0 ? s.gain * error / (stiffness * dt_ + dashpots)
                                    : (error > 0.0 ? s.max_speed : -s.max_speed);
     speed = std::clamp(speed, -s.max_speed, s.max_speed);
     s.speed = speed;

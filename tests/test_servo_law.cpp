@@ -1,5 +1,5 @@
 // The servo law of engine/servo.hpp, step by step:
-//     u = gain·(F_target − F_measured) / (K_walls·dt),  |u| <= max_speed,
+//     u = gain·(F_target − F_measured) / (K_walls·dt + C_walls),  |u| <= max_speed,
 // on scenes where its consequence is exact. Each test names the one-line mutation
 // of engine/simulation_step.cpp (Simulation::drive_walls) or engine/servo.cpp it
 // catches; each was applied once by hand and made the test fail.
@@ -30,9 +30,10 @@ struct LidOnSpring {
 };
 
 LidOnSpring lid_on_spring(double gap, double gain, double max_speed,
-                          std::function<double(double)> target) {
+                          std::function<double(double)> target, double damping_ratio = 0.0) {
   SimulationSettings s = scenes::bare_settings(0.1);  // small: a moving lid rebuilds often
   s.fixed_dt = kDt;
+  s.damping_ratio = damping_ratio;
   LidOnSpring out{Simulation(s), 0};
   const Index mat = out.sim.add_material({kBallK, kBallK, 0.0});
   out.sim.add_sphere(Vec3::Zero(), kRadius, 1e15, mat);
@@ -78,6 +79,26 @@ TEST(ServoLaw, ForceErrorShrinksByOneMinusGainEachStepOnASpring) {
     for (std::size_t k = 1; k < e.size(); ++k)
       EXPECT_NEAR(e[k], (1.0 - gain) * e[k - 1], 1e-8) << "gain " << gain << ", step " << k;
   }
+}
+
+// A dashpot on the lid's contact answers the lid's speed at once: the force the
+// servo measures is K·δ + C·u. With β = 1e-6 on this 3e10 kg ball, C = 2β·√(m·K) =
+// 2.6e3 N·s/m against K·dt = 500 N·s/m: a law dividing by K·dt alone overshoots by
+// gain·C/(K·dt) = 2.6 times each step and chatters at max_speed (a levelling plate
+// over a bed settling with dashpots did). Divided by K·dt + C, the error obeys
+// e' = (1 − g)·e + g·φ·e_prev with φ = C/(K·dt + C) = 0.84: roots 0.944 and −0.444,
+// so 400 steps take it below 1e-6 of its start, with no step at the cap.
+// Mutation caught: C left out of the law (tests/mutations.tsv).
+TEST(ServoLaw, DashpotOnTheContactDoesNotMakeTheLidChatter) {
+  LidOnSpring l = lid_on_spring(-1e-6, 0.5, 1.0, [](double) { return 550.0; }, 1e-6);
+  const std::vector<double> e = errors_seen(l, 400);
+  ASSERT_NEAR(e[0], 500.0, 1e-6);
+  EXPECT_LT(std::abs(e.back()), 1e-6 * 500.0);
+  // The slow root dominates: the error keeps its sign and shrinks by 0.944 a step
+  // (the recurrence above, exact in the first steps; by step 100 the error is 1.6 N,
+  // far above what the ball's creep under 550 N changes, ~1e-8 N).
+  EXPECT_NEAR(e[100] / e[99], 0.944, 0.001);
+  EXPECT_LT(std::abs(l.sim.servos()[0].speed), 1.0);
 }
 
 // gain = 1 removes the whole error in one step, on a spring.
