@@ -98,6 +98,8 @@ Index Simulation::add_wall(const Wall& w) {
   validate_wall(w);
   walls_.push_back(w);
   wall_force_.push_back(Vec3::Zero());
+  wall_last_move_.push_back(Vec3::Zero());
+  wall_force_at_move_.push_back(Vec3::Zero());
   refresh_friction_state();
   prepared_ = false;
   return static_cast<Index>(walls_.size()) - 1;

@@ -201,6 +201,9 @@ class Simulation {
   std::vector<Vec3> reference_positions_;  // ball positions at the last neighbour build
   std::vector<Vec3> wall_reference_;       // wall displacements at the last build
   std::vector<Vec3> wall_force_;           // current only while wall_forces_summed_
+  // Each wall's last move (m) and the force on it when it made it (N): its work is
+  // booked at the next step, by the trapezoid rule over the two forces (drive_walls).
+  std::vector<Vec3> wall_last_move_, wall_force_at_move_;
   bool wall_forces_summed_ = false;
   double wall_work_ = 0.0;
   // Radius expansion (set_size_scale): full-size geometry, kept only once used.

@@ -92,8 +92,14 @@ void Simulation::drive_walls() {
     for (Index w : s.walls) walls_[w].velocity = speed * s.axis;
   }
   for (Index w = 0; w < static_cast<Index>(walls_.size()); ++w) {
-    // The balls feel −wall_force; the wall's surface moves by velocity·dt.
-    wall_work_ -= dt_ * wall_force_[w].dot(walls_[w].velocity);
+    // The balls feel −wall_force. The work of the wall's last move is booked now that
+    // the force after it is known, with the mean of the forces before and after: the
+    // force before alone (a left Riemann sum) misses ½·K·Δx² on every move, always
+    // the same sign, so a servo lid that moves every step made energy from nothing
+    // (tests/test_energy_budget.cpp, a bed under a servo lid: 4 J in 0.12 s).
+    wall_work_ -= 0.5 * (wall_force_at_move_[w] + wall_force_[w]).dot(wall_last_move_[w]);
+    wall_last_move_[w] = dt_ * walls_[w].velocity;
+    wall_force_at_move_[w] = wall_force_[w];
     advance_wall(walls_[w], dt_);
   }
 }
@@ -113,8 +119,12 @@ double Simulation::move_walls() {
   // thread, inside its share of the integration, reading on two threads half the
   // wrenches from the other core (docs/PERFORMANCE.md, "Wall forces when asked for"). Without
   // them drive_walls books no work (every velocity is zero) and moves nothing.
-  wall_forces_summed_ = std::any_of(walls_.begin(), walls_.end(),
-                                    [](const Wall& w) { return w.motion != WallMotion::Fixed; });
+  // A wall that has just stopped still needs the force after its last move.
+  wall_forces_summed_ =
+      std::any_of(walls_.begin(), walls_.end(),
+                  [](const Wall& w) { return w.motion != WallMotion::Fixed; }) ||
+      std::any_of(wall_last_move_.begin(), wall_last_move_.end(),
+                  [](const Vec3& m) { return m != Vec3::Zero(); });
   if (wall_forces_summed_) sum_wall_forces(wall_force_);
   drive_walls();
   double shift2 = 0.0;
