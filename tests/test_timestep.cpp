@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "engine/errors.hpp"
 #include "engine/timestep.hpp"
@@ -55,9 +56,19 @@ TEST(Timestep, StartReportGivesTheRatioAndWarnsWhenTooLarge) {
   const Index mat = sim.add_material({1e8, 1e8, 0.0});
   sim.add_sphere(Vec3::Zero(), 0.02, 2600, mat);
   sim.prepare();
-  EXPECT_NE(log.str().find("dt/dt_critical"), std::string::npos);
-  EXPECT_NE(log.str().find("warning"), std::string::npos);
-  EXPECT_GT(sim.dt() / sim.critical_dt(), 1.0);
+  // The numbers the report prints (six significant digits) are the run's.
+  const std::string text = log.str();
+  const auto number_after = [&](const std::string& label) {
+    const std::size_t at = text.find(label);
+    EXPECT_NE(at, std::string::npos) << "no '" << label << "' in: " << text;
+    return at == std::string::npos ? -1.0 : std::stod(text.substr(at + label.size()));
+  };
+  EXPECT_NEAR(number_after("dt = "), sim.dt(), 1e-5 * sim.dt());
+  EXPECT_NEAR(number_after("critical = "), sim.critical_dt(), 1e-5 * sim.critical_dt());
+  const double ratio = sim.dt() / sim.critical_dt();
+  EXPECT_GT(ratio, 1.0);
+  EXPECT_NEAR(number_after("dt/dt_critical = "), ratio, 1e-5 * ratio);
+  EXPECT_NE(text.find("warning"), std::string::npos) << text;
 }
 
 TEST(Timestep, StrictModeRefusesADtAboveCritical) {
