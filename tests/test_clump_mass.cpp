@@ -17,6 +17,7 @@
 #include "engine/ball_union_integral.hpp"
 #include "engine/clump_batch.hpp"
 #include "engine/clump_mass.hpp"
+#include "test_helpers.hpp"
 
 namespace ballast {
 namespace {
@@ -243,9 +244,9 @@ TEST(ClumpMass, UniformModeMeetsItsAccuracyOnGeneratedClumps) {
 TEST(ClumpMass, BatchIsBitIdenticalOnOneAndTwoThreads) {
   const ClumpParams q = load_clump_preset("table2/sample2").params;
   const ClumpMassOptions o;
-  omp_set_num_threads(1);
+  test_support::ScopedThreads threads(1);
   const std::vector<ClumpTemplate> one = generate_clump_templates(q, o, 40, 99);
-  omp_set_num_threads(2);
+  threads.set(2);
   const std::vector<ClumpTemplate> two = generate_clump_templates(q, o, 40, 99);
   ASSERT_EQ(one.size(), two.size());
   for (std::size_t i = 0; i < one.size(); ++i) {

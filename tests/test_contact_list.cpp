@@ -13,6 +13,7 @@
 #include "cases/sphere_packing.hpp"
 #include "engine/cell_list.hpp"
 #include "engine/contact_list.hpp"
+#include "test_helpers.hpp"
 
 using namespace ballast;
 
@@ -55,11 +56,9 @@ Bed make_bed(std::uint64_t seed) {
 }
 
 std::vector<float> gaps_on(int threads, Bed& bed) {
-  const int before = omp_get_max_threads();
-  omp_set_num_threads(threads);
+  test_support::ScopedThreads team(threads);
   bed.list.touching_first.assign(bed.x.size() + 1, 0);
   bed.list.record_build_gaps(bed.x, bed.r);
-  omp_set_num_threads(before);
   return bed.list.gap_at_build;
 }
 

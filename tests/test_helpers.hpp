@@ -2,6 +2,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <initializer_list>
 #include <string>
@@ -39,6 +40,24 @@ inline Wall plane_wall(const Vec3& point, const Vec3& normal, const Material& m)
 }  // namespace ballast::scenes
 
 namespace ballast::test_support {
+
+// The OpenMP team size for one scope, restored to what it was when the scope ends
+// (tests run in one process, and a test that left two threads behind made the next
+// one spin two threads on ctest's one-core share). Tests named "...Threads" start
+// several; CMake runs those alone (tests/CMakeLists.txt).
+class ScopedThreads {
+ public:
+  explicit ScopedThreads(int threads) : before_(omp_get_max_threads()) {
+    omp_set_num_threads(threads);
+  }
+  ~ScopedThreads() { omp_set_num_threads(before_); }
+  ScopedThreads(const ScopedThreads&) = delete;
+  ScopedThreads& operator=(const ScopedThreads&) = delete;
+  void set(int threads) { omp_set_num_threads(threads); }
+
+ private:
+  int before_;
+};
 
 // Runs f and expects it to throw E (SetupError unless named) with a message that
 // contains every fragment: the field, the value, what is allowed. Passes nothing

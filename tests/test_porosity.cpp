@@ -12,6 +12,7 @@
 
 #include "engine/errors.hpp"
 #include "engine/porosity.hpp"
+#include "test_helpers.hpp"
 
 namespace ballast {
 namespace {
@@ -304,7 +305,7 @@ TEST(GridPorosity, RefusesBadInputNamingTheField) {
 // seeds the grid's deviation had std 1.4e-3: tolerance 7e-3 (5σ). The measurement
 // sphere sums the heavy overlaps twice: it expects 1 − N·E[V]/V_box = −0.081 (std
 // 0.010 over the same seeds; tolerance 0.05), far below the true 0.339.
-TEST(GridPorosity, RealisticBedMatchesBooleanModel) {
+TEST(GridPorosity, RealisticBedMatchesBooleanModelOnOneAndTwoThreads) {
   const Vec3 lo(0.225, 0.0, 0.05), hi(0.475, 0.3, 0.35);
   const double r0 = 0.003, r1 = 0.006;
   const int n = 65000;
@@ -328,10 +329,8 @@ TEST(GridPorosity, RealisticBedMatchesBooleanModel) {
   EXPECT_NEAR(s.porosity, 1 - n * p, 0.05);
 
   // Integer counts: the same on two threads as on one, whatever the schedule.
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(2);
+  test_support::ScopedThreads two(2);
   EXPECT_EQ(grid_porosity(balls, lo, hi, 0.005).solid_cubes, g.solid_cubes);
-  omp_set_num_threads(threads);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "engine/rebuild_policy.hpp"
 #include "engine/state_hash.hpp"
 #include "settling_clump_bed.hpp"
+#include "test_helpers.hpp"
 
 using namespace ballast;
 
@@ -94,7 +95,7 @@ struct SettlingRun {
 // come to rest within a few hundredths of a second), with a fixed dt, the automatic
 // one of the start, so that a build cannot change the timestep.
 SettlingRun settle_clumps(bool adaptive_rebuild) {
-  omp_set_num_threads(1);
+  test_support::ScopedThreads one(1);
   BedOptions o = settling_clump_bed_options();
   Simulation probe = make_bed(o);
   probe.prepare();
@@ -135,5 +136,4 @@ TEST(RebuildPolicy, EarlyBuildsLeaveTheMotionBitForBitAndShortenTheLiveLists) {
       "%.0f with the half-skin rule alone (%ld builds)\n",
       adaptive.mean_live, adaptive.builds, adaptive.early_builds, half_skin.mean_live,
       half_skin.builds);
-  omp_set_num_threads(omp_get_num_procs());
 }

@@ -84,12 +84,9 @@ TEST(Timestep, StrictModeRefusesADtAboveCritical) {
 namespace {
 
 TimestepEstimate estimate_on(const Simulation& sim, int threads) {
-  omp_set_num_threads(threads);
-  const TimestepEstimate e =
-      estimate_critical_timestep(sim.balls(), sim.bodies(), sim.materials(), sim.walls(),
-                                 sim.ball_contacts(), sim.wall_contacts(), 0.1);
-  omp_set_num_threads(1);
-  return e;
+  test_support::ScopedThreads team(threads);
+  return estimate_critical_timestep(sim.balls(), sim.bodies(), sim.materials(), sim.walls(),
+                                    sim.ball_contacts(), sim.wall_contacts(), 0.1);
 }
 
 }  // namespace
@@ -98,7 +95,7 @@ TimestepEstimate estimate_on(const Simulation& sim, int threads) {
 // ranges are combined in order, so it must be the serial loop's to the bit, body
 // and mode included, on any team (three threads: ranges of unequal length).
 TEST(Timestep, EstimateIsTheSameOnOneTwoAndThreeThreads) {
-  omp_set_num_threads(1);
+  test_support::ScopedThreads serial(1);
   Simulation sim = make_bed(settling_clump_bed_options());
   while (sim.time() < 0.05) sim.step();  // fallen: in contact with each other and the walls
   ASSERT_GT(sim.contacts().ball_contacts, 20);
