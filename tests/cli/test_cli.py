@@ -80,7 +80,7 @@ class ClumpCommand(unittest.TestCase):
 
 
 class DemoCommand(unittest.TestCase):
-    def test_demo_reports_timestep_and_closes_its_energy_budget(self):
+    def test_demo_closes_its_energy_budget_within_a_tenth_of_a_percent(self):
         r = ballast("demo", "--spheres", "60", "--max-steps", "4000", "--report-every", "2000")
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("dt/dt_critical = 0.8 (automatic)", r.stdout)
@@ -88,7 +88,9 @@ class DemoCommand(unittest.TestCase):
         line = [l for l in r.stdout.splitlines() if l.startswith("energy:")][0]
         error_percent = float(line.split("balance error ")[1].split(" %")[0])
         self.assertTrue(math.isfinite(error_percent))
-        self.assertLess(error_percent, 10.0)
+        # Measured 0.034 % of the work gravity did, most of it the dashpots' first-
+        # order ledger (docs/ACCURACY.md); bound three times that.
+        self.assertLess(error_percent, 0.1)
 
 
 class RunCommand(unittest.TestCase):
@@ -124,33 +126,41 @@ class RunCommand(unittest.TestCase):
                 self.assertTrue(s["loaded"])
                 # The servo follows the 0.75 -> 10 -> 0.75 kN pulse. It is a
                 # proportional servo, so it lags by the speed the bed gives way at:
-                # the sphere bed yields 0.4 mm in the 17 ms of loading at 30 Hz and
-                # the servo trails by up to 1.5 kN (rms 633 N, under 10 % of the
-                # peak); the clump bed barely yields (rms 68 N, under 5 %).
-                bound = 1000.0 if s is self.spheres else 500.0
+                # the sphere bed yields 0.1 mm in the 17 ms of loading at 30 Hz
+                # (rms error 128 N), the clump bed 13 µm (rms 14 N). Bounds: about
+                # twice what is measured.
+                bound = 250.0 if s is self.spheres else 30.0
                 self.assertLess(s["rms_force_error_N"], bound)
-                # Loading moves the sleeper down, by micrometres to millimetres.
-                self.assertGreater(s["settlement_peak_m"], 1e-6)
-                self.assertLess(s["settlement_peak_m"], 0.02)
+                # Loading moves the sleeper down: measured 99 µm (spheres) and
+                # 13 µm (clumps); bounds a factor 3 either side.
+                lo, hi = (33e-6, 300e-6) if s is self.spheres else (4e-6, 40e-6)
+                self.assertGreater(s["settlement_peak_m"], lo)
+                self.assertLess(s["settlement_peak_m"], hi)
                 self.assertGreater(s["contacts_peak"]["mean_force_N"],
                                    s["contacts_before"]["mean_force_N"])
 
     def test_seating_creep_rule_can_be_turned_off(self):
-        # The smoke sphere bed creeps under the preload and its seating ends by the
-        # creep rule; without the rule the same bed seats until equilibrium or the
-        # step limit, the stages before it unchanged.
+        # On its levelled top the smoke sphere bed comes to rest under the preload; on
+        # a free top (no levelling plate) it creeps, and its seating ends by the creep
+        # rule. Without the rule the same bed seats until equilibrium or the step
+        # limit, the stages before it unchanged.
+        def run(*extra):
+            r = ballast("run", os.path.join(CASES, "box_test", "smoke.json"), "--json",
+                        "--threads", "1", "--set", "/preparation/levelling_pressure=0", *extra)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            return json.loads(r.stdout)
+
         def preload(summary):
             return next(st for st in summary["stages"] if st["name"] == "preload")
-        self.assertEqual(preload(self.spheres)["ended_by"], "steady creep")
-        r = ballast("run", os.path.join(CASES, "box_test", "smoke.json"), "--json",
-                    "--threads", "1", "--set", "/preparation/seating_creep_rule=false")
-        self.assertEqual(r.returncode, 0, r.stderr)
-        s = json.loads(r.stdout)
+        self.assertEqual(preload(self.spheres)["ended_by"], "equilibrium")
+        free = run()
+        self.assertEqual(preload(free)["ended_by"], "steady creep")
+        s = run("--set", "/preparation/seating_creep_rule=false")
         self.assertIn(preload(s)["ended_by"], ("equilibrium", "step limit"))
-        self.assertGreater(preload(s)["steps"], preload(self.spheres)["steps"])
+        self.assertGreater(preload(s)["steps"], preload(free)["steps"])
         seated = [st["name"] for st in s["stages"]].index("preload")
         self.assertEqual([st["steps"] for st in s["stages"][:seated]],
-                         [st["steps"] for st in self.spheres["stages"][:seated]])
+                         [st["steps"] for st in free["stages"][:seated]])
 
     def test_clumps_rotate_less_than_spheres(self):
         # The paper's central finding (Figs 13-14): interlocking clumps turn far less
