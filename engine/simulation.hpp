@@ -142,6 +142,10 @@ class Simulation {
   // Per-thread phase timing of the steps from now on (phase_times.hpp); off by default.
   void set_phase_timing(bool on);
   const PhaseTimes& phase_times() const { return phase_times_; }
+  // Test hook: the force pass's and the integrator's thread shares from `rule`
+  // (timed_split.hpp) instead of measured time, for determinism tests that must not
+  // depend on the clock; an empty rule: measured time again.
+  void force_thread_shares(const TimedSplit::ShareRule& rule);
   long neighbour_builds() const { return builds_; }
   // Of those, the builds the rebuild policy asked for before the half-skin rule did.
   long early_neighbour_builds() const { return early_builds_; }

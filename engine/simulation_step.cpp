@@ -154,6 +154,11 @@ void Simulation::set_phase_timing(bool on) {
   phase_region_before_ = 0.0;
 }
 
+void Simulation::force_thread_shares(const TimedSplit::ShareRule& rule) {
+  contact_split_.force_shares(rule);
+  integrate_split_.force_shares(rule);
+}
+
 void Simulation::do_step() {
   if (!prepared_) prepare();
   if (needs_rebuild_) rebuild_neighbours();

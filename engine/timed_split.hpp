@@ -14,12 +14,17 @@
 // is its own, and sums run in item order), so the split moves time, never bits.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 namespace ballast {
 
 class TimedSplit {
  public:
+  // Each thread's weight (>= 0, not all zero) for the shares of update number
+  // `update` (0 before the first) of a team of `threads`.
+  using ShareRule = std::function<std::vector<double>(long update, int threads)>;
+
   // Serially, before the parallel region: sizes the split for `threads`, starting
   // from equal shares when the count changes.
   void prepare(int threads);
@@ -34,13 +39,23 @@ class TimedSplit {
   // Serially, after the region: folds this step's times into the speeds and remakes
   // the shares.
   void update();
+  // Test hook: shares from `rule` instead of measured time, so that a determinism
+  // test can force uneven or step-to-step changing shares without depending on the
+  // clock. An empty rule returns to measured time from equal shares. It costs nothing
+  // per item: balanced_range reads the same cumulative shares either way, and the
+  // rule is called serially once per update().
+  void force_shares(ShareRule rule);
 
  private:
+  void apply_rule();  // cumulative_ from rule_(updates_, threads_)
+
   int threads_ = 0;
   bool measured_ = false;           // speeds hold a measurement
   std::vector<double> speed_;       // share of the cost per second, smoothed
   std::vector<double> seconds_;     // this step's, per thread (0: not recorded)
   std::vector<double> cumulative_;  // size threads + 1
+  ShareRule rule_;                  // forced shares (test hook); empty: measured time
+  long updates_ = 0;                // update() calls since the rule or the team changed
 };
 
 }  // namespace ballast

@@ -1,9 +1,11 @@
 // Thread shares that follow measured time (engine/timed_split.hpp): they settle where
 // the threads take equal time, one preempted step moves them little, and the ranges
-// balanced_range hands out with them still tile the loop exactly.
+// balanced_range hands out with them still tile the loop exactly; forced shares (the
+// determinism tests' hook) follow their rule alone.
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -104,6 +106,45 @@ TEST(TimedSplit, BalancedRangeTilesTheLoopAtTheMeasuredShares) {
   EXPECT_GE(prefix(ranges[0].second), prefix(n) / 2);
   EXPECT_LT(prefix(ranges[0].second - 1), prefix(n) / 2);
   EXPECT_EQ(ranges[1].second, n);
+}
+
+// The test hook (TimedSplit::force_shares) that determinism tests use: the shares are
+// the rule's at every update, whatever the threads measured, and empty ones are fine.
+TEST(TimedSplit, ForcedSharesFollowTheRuleNotTheClock) {
+  TimedSplit s;
+  s.prepare(3);
+  s.force_shares([](long update, int threads) {
+    std::vector<double> w(threads, 1.0);
+    w[update % threads] = 0.0;  // an empty share, a different thread at each update
+    w[(update + 1) % threads] = 2.0;
+    return w;
+  });
+  EXPECT_TRUE(s.covers(3));
+  for (long update = 0; update < 4; ++update) {
+    SCOPED_TRACE(update);
+    EXPECT_EQ(share(s, int(update % 3)), 0.0);
+    EXPECT_DOUBLE_EQ(share(s, int((update + 1) % 3)), 2.0 / 3.0);
+    EXPECT_EQ(s.cumulative(3), 1.0);
+    step(s, {1.0, 5.0, 25.0});  // times that would move measured shares a lot
+  }
+  // The rule applies to a new team from its first step; no rule: equal shares again.
+  s.prepare(2);
+  EXPECT_EQ(share(s, 0), 0.0);
+  s.force_shares({});
+  EXPECT_EQ(share(s, 0), 0.5);
+  step(s, {1.0, 3.0});
+  EXPECT_GT(share(s, 0), 0.5);  // measured time again
+}
+
+TEST(TimedSplit, ForcedSharesRefuseAWrongRule) {
+  TimedSplit s;
+  s.prepare(2);
+  EXPECT_THROW(s.force_shares([](long, int) { return std::vector<double>{1.0}; }),
+               std::invalid_argument);
+  EXPECT_THROW(s.force_shares([](long, int) { return std::vector<double>{0.0, 0.0}; }),
+               std::invalid_argument);
+  EXPECT_THROW(s.force_shares([](long, int) { return std::vector<double>{2.0, -1.0}; }),
+               std::invalid_argument);
 }
 
 }  // namespace
