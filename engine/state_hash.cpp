@@ -1,6 +1,6 @@
 #include "engine/state_hash.hpp"
 
-#include <cstring>
+#include "engine/simulation.hpp"
 
 namespace ballast {
 
@@ -13,27 +13,81 @@ struct Fnv1a {
     const auto* c = static_cast<const unsigned char*>(p);
     for (std::size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 1099511628211ull;
   }
+  template <class T>
+  void value(const T& v) {
+    bytes(&v, sizeof(v));
+  }
+  // The size first, so that moving an element from one vector to the next shows.
   template <class V>
   void all(const V& v) {
+    value(v.size());
     if (!v.empty()) bytes(v.data(), v.size() * sizeof(v[0]));
   }
 };
 
-}  // namespace
+// Vec3 and Quat are plain doubles, no padding: their bytes are their values.
+static_assert(sizeof(Vec3) == 3 * sizeof(double));
+static_assert(sizeof(Quat) == 4 * sizeof(double));
+// Every field of the budget is hashed by name below: a new one must be added there.
+static_assert(sizeof(EnergyBudget) == 8 * sizeof(double));
 
-std::uint64_t state_hash(const BodyStore& bodies, const ContactList& bc, const ContactList& wc) {
-  Fnv1a f;
+void fold_motion(Fnv1a& f, const BodyStore& bodies) {
   f.all(bodies.position);
   f.all(bodies.velocity);
   f.all(bodies.angular_velocity);
   f.all(bodies.angular_momentum);
-  for (const Quat& q : bodies.orientation) f.bytes(q.coeffs().data(), 4 * sizeof(double));
-  f.all(bc.a);
-  f.all(bc.b);
-  f.all(bc.shear_force);
-  f.all(wc.a);
-  f.all(wc.b);
-  f.all(wc.shear_force);
+  f.all(bodies.orientation);
+  f.all(bodies.rotation);  // the box test's headline measurement
+  f.all(bodies.reference_position);
+}
+
+void fold_contacts(Fnv1a& f, const ContactList& c) {
+  f.all(c.a);
+  f.all(c.b);
+  f.all(c.shear_force);
+  f.all(c.normal_force);
+  f.all(c.slip_total);
+  f.all(c.viscous_total);
+}
+
+}  // namespace
+
+std::uint64_t motion_hash(const BodyStore& bodies) {
+  Fnv1a f;
+  fold_motion(f, bodies);
+  return f.h;
+}
+
+std::uint64_t state_hash(const Simulation& sim) {
+  Fnv1a f;
+  fold_motion(f, sim.bodies());
+  f.all(sim.bodies().force);
+  f.all(sim.bodies().torque);
+  // The energy ledger entry by entry, then its totals: a difference in one body's or
+  // ball's share can be below the last bit of the total.
+  f.all(sim.bodies().gravity_work);
+  f.all(sim.bodies().damping_dissipated);
+  f.all(sim.balls().friction_dissipated);
+  f.all(sim.balls().viscous_dissipated);
+  fold_contacts(f, sim.ball_contacts());
+  fold_contacts(f, sim.wall_contacts());
+  const EnergyBudget e = sim.energy();
+  for (double v : {e.kinetic_translational, e.kinetic_rotational, e.elastic, e.gravity_work,
+                   e.wall_work, e.friction_dissipated, e.damping_dissipated,
+                   e.viscous_dissipated})
+    f.value(v);
+  for (const Wall& w : sim.walls()) {
+    for (const Vec3* v : {&w.point, &w.normal, &w.lo, &w.hi, &w.velocity, &w.displacement})
+      f.value(*v);
+  }
+  for (const Servo& s : sim.servos()) {
+    f.value(s.measured_force);
+    f.value(s.target_now);
+    f.value(s.speed);
+  }
+  f.value(sim.time());
+  f.value(sim.dt());
+  f.value(sim.step_count());
   return f.h;
 }
 

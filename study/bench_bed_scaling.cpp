@@ -91,7 +91,7 @@ ScalingRun interleaved_scaling(const Packing& packing, const BenchBedOptions& op
   }
   omp_set_num_threads(threads);
   for (const Simulation& s : sims)
-    out.hash.push_back(state_hash(s.bodies(), s.ball_contacts(), s.wall_contacts()));
+    out.hash.push_back(state_hash(s));
   return out;
 }
 

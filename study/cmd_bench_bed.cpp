@@ -163,7 +163,7 @@ void run(BenchBedArgs& a) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const BenchBedPhysics p = measure_bench_bed(sim);
   const double rate = double(sim.balls().size()) * double(a.steps) / seconds;
-  const std::string hash = hex(state_hash(sim.bodies(), sim.ball_contacts(), sim.wall_contacts()));
+  const std::string hash = hex(state_hash(sim));
   if (!a.export_packing.empty())
     write_packing_file(
         a.export_packing, packing_of(sim),

@@ -37,7 +37,7 @@ struct Outcome {
 
 Outcome finish(Simulation& sim, double until) {
   while (sim.time() < until) sim.step();
-  return {state_hash(sim.bodies(), sim.ball_contacts(), sim.wall_contacts()),
+  return {state_hash(sim),
           sim.sphere_kernel_lanes(), sim.contacts().ball_contacts, sim.neighbour_builds(),
           sim.energy().friction_dissipated};
 }

@@ -13,7 +13,9 @@ bench-peers` once to make them) and for 1 and 2 threads, every revision runs
 `ballast bench-bed` with the benchmark's physics, in rounds with the order turned by
 one each round so that drift on the host falls on every revision. Printed: the median
 ball-steps/s per revision, its ratio to the first revision, its 2/1-thread speed-up and
-its state hash after the run (equal hashes: the revisions compute the same numbers);
+its state hash after the run (equal hashes: the revisions compute the same numbers;
+revisions on both sides of the change that widened engine/state_hash to the energy
+ledger, walls and clock differ in hash whatever they compute);
 then the median over rounds of each round's ratio to the first revision, which a
 host whose speed drifts over minutes leaves alone better than a ratio of medians.
 With --phase-times, each run also times its phases (`bench-bed --phase-times`) and a
