@@ -2,6 +2,9 @@
 // reports: a determinism test that compares hashes is only as strict as the hash.
 // Each case flips the last bit of one value in a copy of a running scene and
 // expects a different hash; the copy left alone must give the same one.
+// Mutations that must break it (tests/mutations.tsv): the accumulated rotation, the
+// orientations, the per-body damping ledger or the shear history left out of
+// state_hash; each failed the flip of that quantity.
 #include <gtest/gtest.h>
 
 #include <bit>

@@ -110,6 +110,8 @@ TEST(TimedSplit, BalancedRangeTilesTheLoopAtTheMeasuredShares) {
 
 // The test hook (TimedSplit::force_shares) that determinism tests use: the shares are
 // the rule's at every update, whatever the threads measured, and empty ones are fine.
+// Mutations that must break these (tests/mutations.tsv): update() not advancing the
+// rule's update count, and the negative-weight check dropped; each failed here.
 TEST(TimedSplit, ForcedSharesFollowTheRuleNotTheClock) {
   TimedSplit s;
   s.prepare(3);
