@@ -24,9 +24,7 @@ namespace {
 
 constexpr double kAccuracy = 0.005;  // the accuracy the issue asks for (0.5%)
 
-double ball_volume(double r) {
-  return 4.0 / 3.0 * kPi * r * r * r;
-}
+using scenes::sphere_volume;
 
 // Union volume of two balls: V1 + V2 minus the lens (dem-facts.md, "Porosity").
 double two_ball_union_volume(double big_r, double r, double d) {
@@ -34,7 +32,7 @@ double two_ball_union_volume(double big_r, double r, double d) {
       kPi * std::pow(big_r + r - d, 2) *
       (d * d + 2 * d * r - 3 * r * r + 2 * d * big_r + 6 * r * big_r - 3 * big_r * big_r) /
       (12 * d);
-  return ball_volume(big_r) + ball_volume(r) - lens;
+  return sphere_volume(big_r) + sphere_volume(r) - lens;
 }
 
 Vec3 sorted(Vec3 v) {
@@ -52,7 +50,7 @@ TEST(UnionIntegral, OneSphereVolumeAndInertia) {
   for (double accuracy : {0.02, 0.01, kAccuracy, 0.002}) {
     const BallUnionMoments u = integrate_ball_union({Vec3(0.01, -0.02, 0.003)}, {r}, accuracy);
     ASSERT_TRUE(u.converged);
-    const double v = ball_volume(r);
+    const double v = sphere_volume(r);
     EXPECT_LE(std::abs(u.volume - v), u.volume_error) << accuracy;  // the estimate bounds it
     EXPECT_LE(u.volume_error, accuracy * u.volume * (1 + 1e-9));
     const Vec3 moments =
@@ -120,7 +118,7 @@ TEST(ClumpMass, SymmetricDumbbellMatchesItsAnalyticInertia) {
     EXPECT_NEAR(std::abs(t.generation_rotation.col(0).dot(axis)), 1.0, 1e-6);
     if (h >= r) {
       // Apart: the closed form is two spheres with parallel axes.
-      const double m = density * ball_volume(r);
+      const double m = density * sphere_volume(r);
       EXPECT_NEAR(density * exact.axial, 2 * 0.4 * m * r * r, 1e-12 * m * r * r);
       EXPECT_NEAR(density * exact.transverse, 2 * (0.4 * m * r * r + m * h * h), 1e-12 * m * r * r);
     }
@@ -156,7 +154,7 @@ TEST(ClumpMass, SumModeFollowsEqs12To15) {
   const double rho = 2600.0, r1 = 0.02, r2 = 0.01;
   const std::vector<Vec3> centres = {Vec3(0, 0, 0), Vec3(0.02, 0, 0)};
   const MassProperties mp = summed_mass_properties(centres, {r1, r2}, rho);
-  const double m1 = rho * ball_volume(r1), m2 = rho * ball_volume(r2);
+  const double m1 = rho * sphere_volume(r1), m2 = rho * sphere_volume(r2);
   EXPECT_NEAR(mp.mass, m1 + m2, 1e-15);
   const double xg = m2 * 0.02 / (m1 + m2);
   EXPECT_NEAR(mp.centre.x(), xg, 1e-15);
@@ -177,7 +175,7 @@ TEST(ClumpMass, PaperModeGivesTheNominalSphereMassWithScaledDensity) {
   sum.mode = MassMode::kSum;
   const ClumpTemplate tp = make_clump_template(g, paper);
   const ClumpTemplate ts = make_clump_template(g, sum);
-  const double v_clump = ball_volume(0.5 * preset.params.nominal_diameter);
+  const double v_clump = sphere_volume(0.5 * preset.params.nominal_diameter);
   EXPECT_NEAR(tp.mass, 2600.0 * v_clump, 1e-12 * tp.mass);  // eq 10: ρm ΣVi = ρ0 V_clump
   EXPECT_NEAR(tp.density, 2600.0 * v_clump / ts.volume, 1e-9 * tp.density);
   // Same geometry, density scaled: inertia scales with it and the frame is the same.
@@ -509,7 +507,7 @@ TEST(ClumpMass, UniformModeAgreesWithMonteCarloOnAnOffAxisClump) {
 //    eigenvector matrix transposed: 132×.
 TEST(ClumpMass, SumAndPaperModesAgreeWithMonteCarloOnAnOffAxisClump) {
   const Clump c = off_axis_clump();
-  const double v_clump = ball_volume(0.02);  // a nominal sphere of 40 mm, m³
+  const double v_clump = sphere_volume(0.02);  // a nominal sphere of 40 mm, m³
   ClumpMassOptions sum, paper;
   sum.mode = MassMode::kSum;
   paper.mode = MassMode::kPaper;

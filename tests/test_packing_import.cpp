@@ -10,6 +10,7 @@
 #include "cases/box_test_load.hpp"
 #include "cases/packing_bodies.hpp"
 #include "engine/errors.hpp"
+#include "test_helpers.hpp"
 
 using namespace ballast;
 
@@ -17,9 +18,7 @@ namespace {
 
 constexpr double kRho = 2600.0, kG = 9.81;
 
-double ball_mass(double r) {
-  return kRho * 4.0 / 3.0 * kPi * r * r * r;
-}
+double ball_mass(double r) { return scenes::sphere_mass(r, kRho); }
 
 // A clump of three overlapping balls, a sphere, and a two-ball clump.
 Packing mixed_packing() {

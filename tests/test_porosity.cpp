@@ -24,9 +24,7 @@ const double kHcpC = kA * std::sqrt(8.0 / 3.0);                  // m, ideal HCP
 const double kScPorosity = 1.0 - kPi / 6.0;                      // 0.4764
 const double kHcpPorosity = 1.0 - kPi / (3.0 * std::sqrt(2.0));  // 0.2595
 
-double ball_volume(double r) {
-  return 4.0 / 3.0 * kPi * r * r * r;
-}
+using scenes::sphere_volume;
 
 // A lattice: primitive vectors (columns) and the basis inside the primitive cell.
 struct Lattice {
@@ -84,10 +82,10 @@ TEST(IntersectionVolume, DisjointAndContained) {
   EXPECT_EQ(ball_sphere_intersection_volume(r, R, R + r), 0.0);  // touching
   EXPECT_EQ(ball_sphere_intersection_volume(r, R, 5.0), 0.0);
   for (double d : {0.0, 0.4, R - r}) {  // the small ball inside the sphere, and vice versa
-    EXPECT_DOUBLE_EQ(ball_sphere_intersection_volume(r, R, d), ball_volume(r)) << d;
-    EXPECT_DOUBLE_EQ(ball_sphere_intersection_volume(R, r, d), ball_volume(r)) << d;
+    EXPECT_DOUBLE_EQ(ball_sphere_intersection_volume(r, R, d), sphere_volume(r)) << d;
+    EXPECT_DOUBLE_EQ(ball_sphere_intersection_volume(R, r, d), sphere_volume(r)) << d;
   }
-  EXPECT_DOUBLE_EQ(ball_sphere_intersection_volume(R, R, 0.0), ball_volume(R));
+  EXPECT_DOUBLE_EQ(ball_sphere_intersection_volume(R, R, 0.0), sphere_volume(R));
 }
 
 TEST(IntersectionVolume, ContinuousAtTheCaseBoundaries) {
@@ -104,11 +102,11 @@ TEST(IntersectionVolume, ContinuousAtTheCaseBoundaries) {
   // (1 + O(δ/(R − r))). At δ = 1e-4 (R − r): O term ~1e-4, rounding of the difference
   // ~ε V_small / (V_small − V) ≈ 1e-7; 1e-3 covers both.
   delta = 1e-4 * (R - r);
-  EXPECT_NEAR((ball_volume(r) - ball_sphere_intersection_volume(r, R, R - r + delta)) /
+  EXPECT_NEAR((sphere_volume(r) - ball_sphere_intersection_volume(r, R, R - r + delta)) /
                   (kPi * r * R * delta * delta / (R - r)),
               1.0, 1e-3);
   // Equal radii, d → 0: the lens formula divides by d; it must tend to the ball.
-  EXPECT_NEAR(ball_sphere_intersection_volume(R, R, 1e-12) / ball_volume(R), 1.0, 1e-11);
+  EXPECT_NEAR(ball_sphere_intersection_volume(R, R, 1e-12) / sphere_volume(R), 1.0, 1e-11);
 }
 
 TEST(IntersectionVolume, SymmetricAndDerivativeIsMinusCircleArea) {
@@ -190,8 +188,8 @@ TEST(MeasurementSphere, CountsClumpOverlapTwice) {
   clump.add(Vec3(0, 0, 0), kR, 0, 0, Vec3(-kR / 2, 0, 0));
   clump.add(Vec3(kR, 0, 0), kR, 0, 0, Vec3(kR / 2, 0, 0));
   const MeasurementSphereResult s = measurement_sphere_porosity(clump, Vec3::Zero(), 5 * kR);
-  EXPECT_DOUBLE_EQ(s.solid_volume, 2 * ball_volume(kR));
-  EXPECT_DOUBLE_EQ(s.volume, ball_volume(5 * kR));
+  EXPECT_DOUBLE_EQ(s.solid_volume, 2 * sphere_volume(kR));
+  EXPECT_DOUBLE_EQ(s.volume, sphere_volume(5 * kR));
   EXPECT_EQ(s.balls_inside, 2);
   EXPECT_EQ(s.balls_cut, 0);
   EXPECT_THROW(measurement_sphere_porosity(clump, Vec3::Zero(), 0.0), SetupError);
@@ -231,7 +229,7 @@ TEST(GridPorosity, SingleSphereVolumeAtSideRadiusOverFive) {
   // and max 5.4%; over the 4³ placements below rms 1.1%, max 2.6%, mean 0.12%. The
   // mean over uniform placements is exact (each cube centre is covered with
   // probability V/side³), so the mean of 64 is off by ~rms/8 = 0.13%: 4σ = 0.5%.
-  const double side = kR / 5, v = ball_volume(kR);
+  const double side = kR / 5, v = sphere_volume(kR);
   const int m = 4;
   double sum = 0.0, sum2 = 0.0;
   for (int i = 0; i < m; ++i)
@@ -246,8 +244,8 @@ TEST(GridPorosity, SingleSphereVolumeAtSideRadiusOverFive) {
         // Rigorous envelope: the counted cubes contain the ball of radius r − √3·side/2
         // and lie inside the ball of radius r + √3·side/2.
         const double reach = kSqrt3 * side / 2;
-        EXPECT_GE(g.solid_volume(), ball_volume(kR - reach));
-        EXPECT_LE(g.solid_volume(), ball_volume(kR + reach));
+        EXPECT_GE(g.solid_volume(), sphere_volume(kR - reach));
+        EXPECT_LE(g.solid_volume(), sphere_volume(kR + reach));
         EXPECT_LT(std::abs(err), 0.06);
         sum += err;
         sum2 += err * err;
@@ -262,7 +260,7 @@ TEST(GridPorosity, ClumpOverlapCountedOnce) {
   // by 0.26% rms and 1% at most; 1% here (measured: 0.008%).
   const double side = kR / 10;
   const double lens = ball_sphere_intersection_volume(kR, kR, kR);
-  const double union_volume = 2 * ball_volume(kR) - lens;
+  const double union_volume = 2 * sphere_volume(kR) - lens;
   BallStore clump;
   const Vec3 c(0.0123, -0.0041, 0.0077);
   clump.add(c, kR, 0, 0, Vec3(-kR / 2, 0, 0));
