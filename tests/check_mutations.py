@@ -15,6 +15,7 @@ Needs a configured build directory; takes a few minutes (one rebuild per row).
 import argparse
 import os
 import pathlib
+import signal
 import subprocess
 import sys
 
@@ -47,7 +48,16 @@ def run_test(build_dir, target, gtest_filter):
     return r.returncode == 0
 
 
+def stop(signum, frame):
+    # A plain kill would leave the file mutated, or a build finishing after it was
+    # restored would leave objects newer than the restored source (make would then
+    # keep the mutated ones): raise instead, so that subprocess.run stops its child
+    # first and the `finally` below restores the file after it.
+    raise KeyboardInterrupt
+
+
 def main():
+    signal.signal(signal.SIGTERM, stop)
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--build", default=str(ROOT / "build"))
     ap.add_argument("--only", default="", help="rows whose filter or file contain TEXT")
@@ -73,7 +83,7 @@ def main():
             else:
                 result = "survived" if run_test(build_dir, r["target"], r["filter"]) else "killed"
         finally:
-            src.write_text(original)
+            src.write_text(original)  # written after any build: newer than its objects
         survived += result == "survived"
         print(f"| {r['filter']} | {r['file']} | `{r['before']}` → `{r['after']}` | "
               f"{r['breaks']} | {result} |", flush=True)
