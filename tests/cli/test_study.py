@@ -258,6 +258,37 @@ class Interruption(unittest.TestCase):
         self.assertIn("moved to " + path + ".damaged", r.stdout)
         self.assertEqual(os.path.getsize(path + ".damaged"), size // 2)  # kept, untouched
 
+    def test_a_half_written_part_is_removed_and_the_study_completes(self):
+        # A part cut short while it was being written (killed between the copy and its
+        # rename) is named *.tmp; --resume removes it and redoes nothing it held.
+        path = os.path.join(scratch(), "cut.h5")
+        p, _ = self.start(path, "ok ")
+        p.kill()
+        p.communicate()
+        parts = path + ".parts"
+        os.makedirs(parts, exist_ok=True)
+        cut = os.path.join(parts, "spheres-r1.h5.tmp")
+        with open(cut, "wb") as f:
+            f.write(b"\x89HDF half")
+        self.resume_and_compare(path)
+        self.assertFalse(os.path.exists(cut))
+
+    def test_retry_failed_runs_the_failed_run_again_and_no_other(self):
+        folder = scratch()
+        path = os.path.join(folder, "retry.h5")
+        shutil.copy(REFERENCE[0], path)
+        r = study(MIXED, "-o", path, "--resume", "--retry-failed", "--jobs", "1",
+                  "--threads", "1")
+        # huge-r1 blows up again: status 3, and it is the only run started.
+        self.assertEqual(r.returncode, 3, r.stdout + r.stderr)
+        started = [l.split()[1] for l in r.stdout.splitlines() if l.startswith("start")]
+        self.assertEqual(started, ["huge-r1"])
+        self.assertEqual(run_differences(REFERENCE[0], path), [])
+        # Without --resume the flag is refused, naming both flags.
+        r = study(MIXED, "-o", os.path.join(folder, "other.h5"), "--retry-failed")
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("--retry-failed without --resume", r.stderr)
+
     def test_sigterm_abandons_the_run_in_flight_and_says_how_to_finish(self):
         path = os.path.join(scratch(), "term.h5")
         p, lines = self.start(path, "ok ")
@@ -302,6 +333,19 @@ class Refusals(unittest.TestCase):
             self.assertIn(phrase, r.stderr)
         with open(path, "rb") as f:
             self.assertEqual(f.read(), before)
+
+    def test_dry_run_lists_every_run_with_its_seed_and_writes_nothing(self):
+        path = os.path.join(scratch(), "dry.h5")
+        r = study(MIXED, "-o", path, "--dry-run")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with h5py.File(REFERENCE[0], "r") as f:
+            seeds = {k: int(f["runs"][k].attrs["seed"]) for k in f["runs"]}
+        for run_id in IDS:
+            line = next(l for l in r.stdout.splitlines() if f"  {run_id}  " in l)
+            self.assertIn(f"seed {seeds[run_id]}", line)
+        self.assertIn("nothing run or written", r.stdout)
+        self.assertFalse(os.path.exists(path))
+        self.assertFalse(os.path.exists(path + ".parts"))
 
     def test_an_existing_archive_without_resume(self):
         path, before = self.copy_of_reference()
