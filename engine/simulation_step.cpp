@@ -76,10 +76,11 @@ void Simulation::drive_walls() {
       for (Index w : s.walls)
         if (wall_contacts_.b[c] == w) {
           const Index ball = wall_contacts_.a[c];
-          const double kn = series_stiffness(materials_[balls_.material[ball]].kn,
-                                             walls_[w].material.kn);
+          const double kn =
+              series_stiffness(materials_[balls_.material[ball]].kn, walls_[w].material.kn);
           stiffness += kn;
-          if (beta > 0.0) dashpots += dashpot_coefficient(beta, bodies_.mass[balls_.body[ball]], kn);
+          if (beta > 0.0)
+            dashpots += dashpot_coefficient(beta, bodies_.mass[balls_.body[ball]], kn);
         }
     }
     s.measured_force = measured;
@@ -120,11 +121,10 @@ double Simulation::move_walls() {
   // wrenches from the other core (docs/PERFORMANCE.md, "Wall forces when asked for"). Without
   // them drive_walls books no work (every velocity is zero) and moves nothing.
   // A wall that has just stopped still needs the force after its last move.
-  wall_forces_summed_ =
-      std::any_of(walls_.begin(), walls_.end(),
-                  [](const Wall& w) { return w.motion != WallMotion::Fixed; }) ||
-      std::any_of(wall_last_move_.begin(), wall_last_move_.end(),
-                  [](const Vec3& m) { return m != Vec3::Zero(); });
+  wall_forces_summed_ = std::any_of(walls_.begin(), walls_.end(),
+                                    [](const Wall& w) { return w.motion != WallMotion::Fixed; }) ||
+                        std::any_of(wall_last_move_.begin(), wall_last_move_.end(),
+                                    [](const Vec3& m) { return m != Vec3::Zero(); });
   if (wall_forces_summed_) sum_wall_forces(wall_force_);
   drive_walls();
   double shift2 = 0.0;

@@ -73,8 +73,7 @@ std::uint64_t state_hash(const Simulation& sim) {
   fold_contacts(f, sim.wall_contacts());
   const EnergyBudget e = sim.energy();
   for (double v : {e.kinetic_translational, e.kinetic_rotational, e.elastic, e.gravity_work,
-                   e.wall_work, e.friction_dissipated, e.damping_dissipated,
-                   e.viscous_dissipated})
+                   e.wall_work, e.friction_dissipated, e.damping_dissipated, e.viscous_dissipated})
     f.value(v);
   for (const Wall& w : sim.walls()) {
     for (const Vec3* v : {&w.point, &w.normal, &w.lo, &w.hi, &w.velocity, &w.displacement})

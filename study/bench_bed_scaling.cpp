@@ -90,8 +90,7 @@ ScalingRun interleaved_scaling(const Packing& packing, const BenchBedOptions& op
     out.independent.add(t_one, t_copies / double(threads));
   }
   omp_set_num_threads(threads);
-  for (const Simulation& s : sims)
-    out.hash.push_back(state_hash(s));
+  for (const Simulation& s : sims) out.hash.push_back(state_hash(s));
   return out;
 }
 

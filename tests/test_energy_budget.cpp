@@ -46,9 +46,11 @@ TEST(EnergyBudget, UndampedDriftFallsAsTheSquareOfTheTimestep) {
   const EnergyBudget fine = pour(300, 0.2, 0.0, 0.0);
   const double drift_coarse = std::abs(coarse.balance()) / coarse.gravity_work;
   const double drift_fine = std::abs(fine.balance()) / fine.gravity_work;
-  std::printf("undamped drift: %.3g %% at 0.4, %.3g %% at 0.2 (ratio %.2f); released %.4g J, "
-              "friction %.4g J\n", 100 * drift_coarse, 100 * drift_fine,
-              drift_coarse / drift_fine, fine.gravity_work, fine.friction_dissipated);
+  std::printf(
+      "undamped drift: %.3g %% at 0.4, %.3g %% at 0.2 (ratio %.2f); released %.4g J, "
+      "friction %.4g J\n",
+      100 * drift_coarse, 100 * drift_fine, drift_coarse / drift_fine, fine.gravity_work,
+      fine.friction_dissipated);
   // The run did something worth checking: energy released and much of it taken by
   // slip (measured 56 J and 42 J: without damping the bed is still a bouncing gas).
   EXPECT_GT(fine.gravity_work, 30.0);
@@ -65,9 +67,11 @@ TEST(EnergyBudget, UndampedDriftFallsAsTheSquareOfTheTimestep) {
 // Mutations caught: local damping's loss booked with the wrong sign, or slip's.
 TEST(EnergyBudget, DampedPourClosesWithEveryLoss) {
   const EnergyBudget e = pour(300, 0.2, 0.7, 0.1);
-  std::printf("damped pour: released %.4g J, damping %.4g, viscous %.4g, friction %.4g, "
-              "balance %.3g J\n", e.gravity_work, e.damping_dissipated, e.viscous_dissipated,
-              e.friction_dissipated, e.balance());
+  std::printf(
+      "damped pour: released %.4g J, damping %.4g, viscous %.4g, friction %.4g, "
+      "balance %.3g J\n",
+      e.gravity_work, e.damping_dissipated, e.viscous_dissipated, e.friction_dissipated,
+      e.balance());
   EXPECT_GT(e.damping_dissipated, 0.1 * e.gravity_work);
   EXPECT_GT(e.viscous_dissipated, 1e-3 * e.gravity_work);
   EXPECT_GT(e.friction_dissipated, 1e-3 * e.gravity_work);
@@ -131,8 +135,7 @@ TEST(EnergyBudget, BedUnderAServoLidClosesAgainstTheLidsWork) {
   const Index mat = sim.add_material(m);
   for (const Wall& w : box_container(Vec3::Zero(), Vec3(side, side, side + 0.05), m, m, true))
     sim.add_wall(w);
-  const Index lid =
-      sim.add_wall(scenes::plane_wall(Vec3(0, 0, side + 0.005), -Vec3::UnitZ(), m));
+  const Index lid = sim.add_wall(scenes::plane_wall(Vec3(0, 0, side + 0.005), -Vec3::UnitZ(), m));
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> jitter(-0.04 * r, 0.04 * r);  // no overlap at the start
   for (int i = 0; i < 4; ++i)
@@ -148,10 +151,11 @@ TEST(EnergyBudget, BedUnderAServoLidClosesAgainstTheLidsWork) {
   sim.add_servo(servo);
   while (sim.time() < 0.02 + 0.1) sim.step();  // landing, then two load cycles
   const EnergyBudget e = sim.energy();
-  std::printf("servo lid: wall work %.4g J, gravity %.4g, damping %.4g, viscous %.4g, "
-              "friction %.4g, elastic %.4g, balance %.3g J\n", e.wall_work, e.gravity_work,
-              e.damping_dissipated, e.viscous_dissipated, e.friction_dissipated, e.elastic,
-              e.balance());
+  std::printf(
+      "servo lid: wall work %.4g J, gravity %.4g, damping %.4g, viscous %.4g, "
+      "friction %.4g, elastic %.4g, balance %.3g J\n",
+      e.wall_work, e.gravity_work, e.damping_dissipated, e.viscous_dissipated,
+      e.friction_dissipated, e.elastic, e.balance());
   EXPECT_GT(e.wall_work, 0.0);
   EXPECT_GT(e.friction_dissipated, 0.0);
   EXPECT_GT(e.viscous_dissipated, 0.0);
@@ -174,7 +178,7 @@ TEST(EnergyBudget, WallWorkOnAFixedSpringIsItsElasticEnergy) {
   sim.add_sphere(Vec3::Zero(), r, 1e15, mat);
   const Index lid = sim.add_wall(
       scenes::plane_wall(Vec3(0, 0, r), -Vec3::UnitZ(), {k, k, 0.0}));  // just touching
-  sim.set_wall_velocity(lid, Vec3(0, 0, -1e-3));                       // 10 nm a step
+  sim.set_wall_velocity(lid, Vec3(0, 0, -1e-3));                        // 10 nm a step
   sim.run(100);
   const EnergyBudget e = sim.energy();
   const double series = 0.5 * k, overlap = 100 * 1e-3 * 1e-5;  // 1 µm after 100 moves

@@ -24,9 +24,13 @@ inline SimulationSettings bare_settings(double half_size = 1.0) {
   return s;
 }
 
-inline double sphere_volume(double r) { return 4.0 / 3.0 * kPi * r * r * r; }  // m³
+inline double sphere_volume(double r) {
+  return 4.0 / 3.0 * kPi * r * r * r;
+}  // m³
 
-inline double sphere_mass(double r, double density) { return density * sphere_volume(r); }
+inline double sphere_mass(double r, double density) {
+  return density * sphere_volume(r);
+}
 
 inline Wall plane_wall(const Vec3& point, const Vec3& normal, const Material& m) {
   Wall w;

@@ -11,10 +11,10 @@ using namespace ballast;
 namespace {
 
 struct ImpactResult {
-  double duration;     // s, first to last step with overlap
-  double restitution;  // separation speed / approach speed
-  double kinetic0;     // J, before the impact
-  EnergyBudget energy; // after it
+  double duration;      // s, first to last step with overlap
+  double restitution;   // separation speed / approach speed
+  double kinetic0;      // J, before the impact
+  EnergyBudget energy;  // after it
 };
 
 // Two spheres of radius r approach along x at ±v0, with contact damping ratio β.
@@ -95,7 +95,8 @@ TEST(Impact, DashpotDissipatesWhatTheImpactLoses) {
     // The measured restitution is within 1 % of e (ViscousRestitution... above),
     // which moves the loss by at most 2 %·e² of the approach energy.
     EXPECT_NEAR(res.energy.viscous_dissipated, lost,
-                ledger * lost + 0.02 * approach * e_exact * e_exact) << "beta " << beta;
+                ledger * lost + 0.02 * approach * e_exact * e_exact)
+        << "beta " << beta;
     // Against the restitution this run measured: the ledger's error alone.
     const double lost_here = approach * (1 - res.restitution * res.restitution);
     EXPECT_NEAR(res.energy.viscous_dissipated, lost_here, ledger * lost_here) << "beta " << beta;

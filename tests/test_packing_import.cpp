@@ -18,7 +18,9 @@ namespace {
 
 constexpr double kRho = 2600.0, kG = 9.81;
 
-double ball_mass(double r) { return scenes::sphere_mass(r, kRho); }
+double ball_mass(double r) {
+  return scenes::sphere_mass(r, kRho);
+}
 
 // A clump of three overlapping balls, a sphere, and a two-ball clump.
 Packing mixed_packing() {

@@ -16,7 +16,7 @@ using ballast::test_support::expect_error;
 namespace {
 
 constexpr double kRadius = 0.02, kDt = 1e-5;
-constexpr double kBallK = 1e8, kWallK = 1e8;            // N/m; in series 5e7
+constexpr double kBallK = 1e8, kWallK = 1e8;  // N/m; in series 5e7
 constexpr double kSeriesK = kBallK * kWallK / (kBallK + kWallK);
 
 // A lid under a servo above one sphere, no gravity, no damping. The sphere is made
@@ -90,7 +90,8 @@ TEST(ServoLaw, ForceErrorShrinksByOneMinusGainEachStepOnASpring) {
 // so 400 steps take it below 1e-6 of its start, with no step at the cap.
 // Mutation caught: C left out of the law (tests/mutations.tsv).
 TEST(ServoLaw, DashpotOnTheContactDoesNotMakeTheLidChatter) {
-  LidOnSpring l = lid_on_spring(-1e-6, 0.5, 1.0, [](double) { return 550.0; }, 1e-6);
+  LidOnSpring l = lid_on_spring(
+      -1e-6, 0.5, 1.0, [](double) { return 550.0; }, 1e-6);
   const std::vector<double> e = errors_seen(l, 400);
   ASSERT_NEAR(e[0], 500.0, 1e-6);
   EXPECT_LT(std::abs(e.back()), 1e-6 * 500.0);

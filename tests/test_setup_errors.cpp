@@ -18,7 +18,7 @@ TEST(SetupErrors, BallOutsideTheDomain) {
   Simulation sim(scenes::bare_settings(1.0));
   const Index mat = sim.add_material({1e6, 1e6, 0.3});
   expect_error([&] { sim.add_sphere(Vec3(0, 0, 3.0), 0.01, 2600, mat); },
-                     {"ball position", "(0, 0, 3)", "inside the domain"});
+               {"ball position", "(0, 0, 3)", "inside the domain"});
 }
 
 TEST(SetupErrors, NonPositiveTimestep) {

@@ -37,9 +37,8 @@ struct Outcome {
 
 Outcome finish(Simulation& sim, double until) {
   while (sim.time() < until) sim.step();
-  return {state_hash(sim),
-          sim.sphere_kernel_lanes(), sim.contacts().ball_contacts, sim.neighbour_builds(),
-          sim.energy().friction_dissipated};
+  return {state_hash(sim), sim.sphere_kernel_lanes(), sim.contacts().ball_contacts,
+          sim.neighbour_builds(), sim.energy().friction_dissipated};
 }
 
 // A cloud of 400 spheres landing at 100 g in a narrow box: a bed within 0.05 s.
