@@ -9,47 +9,57 @@
 
 using namespace ballast;
 
-TEST(Sliding, SlipStopsAtFiveSeventhsOfLaunchSpeed) {
-  const double r = 0.02, rho = 2600.0, g = 9.81, k = 1e7, mu = 0.3, v0 = 1.0;
+namespace {
+
+constexpr double kR = 0.02, kRho = 2600.0, kG = 9.81, kK = 1e7, kDt = 1e-6;
+
+// A sphere of friction mu_ball launched at v0 along x, without spin, on a plane of
+// friction mu_wall, under gravity. It starts at its static overlap, so the normal
+// force is m·g from the first step.
+struct SlidingSphere {
+  Simulation sim;
+  Index body = 0;
+};
+
+SlidingSphere sliding_sphere(double mu_ball, double mu_wall, double v0) {
   SimulationSettings s = scenes::bare_settings(0.5);
-  s.gravity = Vec3(0, 0, -g);
-  s.fixed_dt = 1e-6;
-  Simulation sim(s);
-  const Index mat = sim.add_material({2 * k, 2 * k, mu});
-  sim.add_wall(scenes::plane_wall(Vec3::Zero(), Vec3::UnitZ(), {2 * k, 2 * k, mu}));
-  const double m = scenes::sphere_mass(r, rho);
-  // Start at the static overlap so the normal force is m·g from the first step.
-  const Index b = sim.add_sphere(Vec3(-0.4, 0, r - m * g / k), r, rho, mat);
-  sim.set_body_velocity(b, Vec3(v0, 0, 0));
+  s.gravity = Vec3(0, 0, -kG);
+  s.fixed_dt = kDt;
+  SlidingSphere out{Simulation(s), 0};
+  const Index mat = out.sim.add_material({2 * kK, 2 * kK, mu_ball});
+  out.sim.add_wall(scenes::plane_wall(Vec3::Zero(), Vec3::UnitZ(), {2 * kK, 2 * kK, mu_wall}));
+  const double m = scenes::sphere_mass(kR, kRho);
+  out.body = out.sim.add_sphere(Vec3(-0.4, 0, kR - m * kG / kK), kR, kRho, mat);
+  out.sim.set_body_velocity(out.body, Vec3(v0, 0, 0));
+  return out;
+}
+
+}  // namespace
+
+TEST(Sliding, SlipStopsAtFiveSeventhsOfLaunchSpeed) {
+  const double mu = 0.3, v0 = 1.0;
+  SlidingSphere p = sliding_sphere(mu, mu, v0);
   // Sliding lasts t = 2·v0/(7·mu·g) ≈ 0.097 s; run twice that.
-  const double t_slide = 2 * v0 / (7 * mu * g);
-  sim.run(static_cast<long>(2 * t_slide / 1e-6));
-  const double v = sim.bodies().velocity[b].x();
+  const double t_slide = 2 * v0 / (7 * mu * kG);
+  p.sim.run(static_cast<long>(2 * t_slide / kDt));
+  const double v = p.sim.bodies().velocity[p.body].x();
   EXPECT_NEAR(v, 5.0 / 7.0 * v0, 0.01 * 5.0 / 7.0 * v0);
   // Rolling without slip: ω·r = v.
-  EXPECT_NEAR(sim.bodies().angular_velocity[b].y() * r, v, 0.01 * v);
+  EXPECT_NEAR(p.sim.bodies().angular_velocity[p.body].y() * kR, v, 0.01 * v);
 }
 
 // The paper raises friction from 0.3 (compaction) to 0.5 (loading) mid-run. While a
 // sphere slips, its deceleration is exactly mu·g, so the change shows at once.
 TEST(Sliding, FrictionChangeTakesEffectMidRun) {
-  const double r = 0.02, rho = 2600.0, g = 9.81, k = 1e7, v0 = 2.0, dt = 1e-6;
-  SimulationSettings s = scenes::bare_settings(0.5);
-  s.gravity = Vec3(0, 0, -g);
-  s.fixed_dt = dt;
-  Simulation sim(s);
-  const Index mat = sim.add_material({2 * k, 2 * k, 0.3});
-  sim.add_wall(scenes::plane_wall(Vec3::Zero(), Vec3::UnitZ(), {2 * k, 2 * k, 0.3}));
-  const double m = scenes::sphere_mass(r, rho);
-  const Index b = sim.add_sphere(Vec3(-0.4, 0, r - m * g / k), r, rho, mat);
-  sim.set_body_velocity(b, Vec3(v0, 0, 0));
-  sim.run(50000);  // 0.05 s at mu = 0.3 (slip would last 2·v0/(7·0.3·g) = 0.19 s)
-  const double v1 = sim.bodies().velocity[b].x();
-  EXPECT_NEAR(v1, v0 - 0.3 * g * 0.05, 0.01 * 0.3 * g * 0.05);
-  sim.set_all_friction(0.5);
-  sim.run(50000);  // 0.05 s at mu = 0.5, still slipping
-  const double v2 = sim.bodies().velocity[b].x();
-  EXPECT_NEAR(v1 - v2, 0.5 * g * 0.05, 0.01 * 0.5 * g * 0.05);
+  const double v0 = 2.0;
+  SlidingSphere p = sliding_sphere(0.3, 0.3, v0);
+  p.sim.run(50000);  // 0.05 s at mu = 0.3 (slip would last 2·v0/(7·0.3·g) = 0.19 s)
+  const double v1 = p.sim.bodies().velocity[p.body].x();
+  EXPECT_NEAR(v1, v0 - 0.3 * kG * 0.05, 0.01 * 0.3 * kG * 0.05);
+  p.sim.set_all_friction(0.5);
+  p.sim.run(50000);  // 0.05 s at mu = 0.5, still slipping
+  const double v2 = p.sim.bodies().velocity[p.body].x();
+  EXPECT_NEAR(v1 - v2, 0.5 * kG * 0.05, 0.01 * 0.5 * kG * 0.05);
 }
 
 // Two materials: a contact slips at the smaller of the two friction coefficients
@@ -58,20 +68,12 @@ TEST(Sliding, FrictionChangeTakesEffectMidRun) {
 // Mutations caught: min swapped for max (0.6·g), or the wall's μ ignored (0.6·g on
 // the first; tests/mutations.tsv).
 TEST(Sliding, TwoMaterialsSlipAtTheSmallerFriction) {
-  const double r = 0.02, rho = 2600.0, g = 9.81, k = 1e7, v0 = 2.0, dt = 1e-6;
+  const double v0 = 2.0;
   for (const auto& [mu_ball, mu_wall] : {std::pair{0.6, 0.3}, std::pair{0.3, 0.6}}) {
-    SimulationSettings s = scenes::bare_settings(0.5);
-    s.gravity = Vec3(0, 0, -g);
-    s.fixed_dt = dt;
-    Simulation sim(s);
-    const Index mat = sim.add_material({2 * k, 2 * k, mu_ball});
-    sim.add_wall(scenes::plane_wall(Vec3::Zero(), Vec3::UnitZ(), {2 * k, 2 * k, mu_wall}));
-    const double m = scenes::sphere_mass(r, rho);
-    const Index b = sim.add_sphere(Vec3(-0.4, 0, r - m * g / k), r, rho, mat);
-    sim.set_body_velocity(b, Vec3(v0, 0, 0));
-    sim.run(50000);  // 0.05 s; at 0.3·g slip lasts 2·v0/(7·0.3·g) = 0.19 s
-    const double slowed = v0 - sim.bodies().velocity[b].x();
-    EXPECT_NEAR(slowed, 0.3 * g * 0.05, 0.01 * 0.3 * g * 0.05)
+    SlidingSphere p = sliding_sphere(mu_ball, mu_wall, v0);
+    p.sim.run(50000);  // 0.05 s; at 0.3·g slip lasts 2·v0/(7·0.3·g) = 0.19 s
+    const double slowed = v0 - p.sim.bodies().velocity[p.body].x();
+    EXPECT_NEAR(slowed, 0.3 * kG * 0.05, 0.01 * 0.3 * kG * 0.05)
         << "ball mu " << mu_ball << " on wall mu " << mu_wall;
   }
   // Ball on ball: the pair table the force loop reads holds the same rule.
