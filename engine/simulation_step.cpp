@@ -65,9 +65,9 @@ void Simulation::drive_walls() {
     // The measured force answers a wall speed u with K·u·dt through the contacts'
     // springs and with C·u through their normal dashpots, both by the next step; the
     // law divides by both. Divided by K·dt alone, a contact whose dashpot outweighs
-    // its spring's step (C > K·dt/gain) made the wall overshoot every step: a
+    // its spring's step (C > K·dt/gain) made the wall overshoot every step: the
     // levelling plate on a bed settling with dashpots (β = 0.3) chattered at its
-    // speed cap, its force swinging from 0 to 66 kN around a 2.1 kN target.
+    // speed cap (tests/test_servo_law.cpp, DashpotOnTheContact...).
     double measured = 0.0, stiffness = 0.0, dashpots = 0.0;
     const double beta = settings_.damping_ratio;
     for (Index w : s.walls) measured -= wall_force_[w].dot(s.axis);
