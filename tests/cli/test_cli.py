@@ -180,7 +180,68 @@ class RunCommand(unittest.TestCase):
             self.assertAlmostEqual(peak, 10000.0, delta=100.0)
             self.assertEqual(f["run/particles/position_start"].shape, (s["bodies"], 3))
             self.assertIn("scene_json", f.attrs)
-        self.assertTrue(os.path.exists(os.path.join(self.vtk, "contacts_peak.vtk")))
+
+    @staticmethod
+    def read_vtk(path):
+        """A legacy ASCII VTK file as {section: (count, numbers)}: POINTS, LINES,
+        VERTICES and every SCALARS/VECTORS array by its name."""
+        with open(path) as f:
+            words = f.read().split()
+        sections, k = {}, words.index("DATASET") + 2
+        width = {"POINTS": 3, "VECTORS": 3, "SCALARS": 1}
+        while k < len(words):
+            key = words[k]
+            if key in ("POINT_DATA", "CELL_DATA"):
+                count, k = int(words[k + 1]), k + 2
+            elif key == "POINTS":
+                n = int(words[k + 1])
+                sections[key], k = (n, np.array(words[k + 3:k + 3 + 3 * n], float)), k + 3 + 3 * n
+            elif key in ("LINES", "VERTICES"):
+                n, size = int(words[k + 1]), int(words[k + 2])
+                sections[key], k = (n, np.array(words[k + 3:k + 3 + size], int)), k + 3 + size
+            elif key in ("SCALARS", "VECTORS"):
+                name = words[k + 1]
+                k += 6 if key == "SCALARS" else 3  # SCALARS name type 1 LOOKUP_TABLE default
+                n = width[key] * count
+                sections[name], k = (count, np.array(words[k:k + n], float)), k + n
+            else:
+                raise AssertionError(f"{path}: unexpected '{key}'")
+        return sections
+
+    def test_vtk_files_hold_what_the_archive_holds(self):
+        # ParaView reads these; each array must be the archive's, particle by particle
+        # and contact by contact, not merely present. Fails if study/run_vtk.cpp writes
+        # a displacement as start − end (checked by hand: 715 of 720 values differ).
+        with h5py.File(self.archive, "r") as f:
+            p = f["run/particles"]
+            start = p["position_start"][:]
+            particles = self.read_vtk(os.path.join(self.vtk, "particles.vtk"))
+            n = len(start)
+            self.assertEqual(particles["POINTS"][0], n)
+            np.testing.assert_allclose(particles["POINTS"][1].reshape(n, 3), start, atol=1e-9)
+            # One vertex cell per particle: "1 k" for k = 0 .. n-1.
+            np.testing.assert_array_equal(particles["VERTICES"][1].reshape(n, 2),
+                                          np.column_stack([np.ones(n, int), np.arange(n)]))
+            for name in ("displacement_peak", "displacement_end"):
+                np.testing.assert_allclose(particles[name][1].reshape(n, 3), p[name][:],
+                                           atol=1e-9, err_msg=name)
+            for name in ("rotation_loading", "rotation_unloading", "rotation_cycle"):
+                np.testing.assert_allclose(particles[name][1], p[name][:], rtol=1e-8,
+                                           atol=1e-12, err_msg=name)
+            for stage in ("before", "peak", "after"):
+                c = f[f"run/contacts/{stage}"]
+                m = len(c["force"])
+                self.assertGreater(m, 0)
+                vtk = self.read_vtk(os.path.join(self.vtk, f"contacts_{stage}.vtk"))
+                # Each contact a line from one end to the other, carrying its force.
+                points = vtk["POINTS"][1].reshape(2 * m, 3)
+                np.testing.assert_allclose(points[0::2], c["from"][:], atol=1e-9)
+                np.testing.assert_allclose(points[1::2], c["to"][:], atol=1e-9)
+                lines = vtk["LINES"][1].reshape(m, 3)
+                np.testing.assert_array_equal(lines[:, 0], 2)
+                np.testing.assert_array_equal(lines[:, 1], 2 * np.arange(m))
+                np.testing.assert_array_equal(lines[:, 2], 2 * np.arange(m) + 1)
+                np.testing.assert_allclose(vtk["force"][1], c["force"][:], rtol=1e-8)
 
     def test_exported_bed_is_a_packing_that_a_scene_imports_unchanged(self):
         # Written after the last stage (the load cycle), one x y z r line per sphere.
