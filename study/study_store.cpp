@@ -32,11 +32,14 @@ void sync_path(const std::string& path) {
   ::close(fd);
 }
 
-// One attempt to open the archive for appending; -1 if it cannot be (a reader holds
-// HDF5's file lock, or the file is damaged).
-hid_t try_open(const std::string& path, unsigned flags) {
+// One attempt to open the archive; -1 if it cannot be (a reader holds HDF5's file
+// lock, or the file is damaged), and then `why` gets HDF5's reason. It is read here
+// because closing the property list clears HDF5's error stack.
+hid_t try_open(const std::string& path, unsigned flags, std::string* why = nullptr) {
   Handle fapl = archive_file_access();
-  return H5Fopen(path.c_str(), flags, fapl);
+  const hid_t id = H5Fopen(path.c_str(), flags, fapl);
+  if (id < 0 && why) *why = last_hdf5_error();
+  return id;
 }
 
 struct PartInfo {
@@ -117,9 +120,10 @@ StudyStore::Found StudyStore::inspect(const std::string& path) const {
   Found f;
   f.exists = fs::exists(path);
   if (!f.exists) return f;
-  const hid_t id = try_open(path, H5F_ACC_RDONLY);
+  std::string why;
+  const hid_t id = try_open(path, H5F_ACC_RDONLY, &why);
   if (id < 0) {
-    f.damage = "it does not open: " + last_hdf5_error();
+    f.damage = "it does not open: " + why;
     return f;
   }
   Handle file(id, H5Fclose, "open " + path);
@@ -256,12 +260,13 @@ bool StudyStore::append_pending() {
   // A reader (h5py, h5dump) holding the archive open keeps HDF5's file lock: wait a
   // little for it, then leave the runs pending (they are safe in their parts).
   hid_t id = -1;
+  std::string why;
   for (int attempt = 0; attempt < 10 && id < 0; ++attempt) {
     if (attempt > 0) std::this_thread::sleep_for(std::chrono::seconds(1));
-    id = try_open(path_, H5F_ACC_RDWR);
+    id = try_open(path_, H5F_ACC_RDWR, &why);
   }
   if (id < 0) {
-    report_("cannot open " + path_ + " to append (" + last_hdf5_error() +
+    report_("cannot open " + path_ + " to append (" + why +
             "): " + std::to_string(pending_.size()) + " finished runs wait in " + parts_dir());
     return false;
   }

@@ -16,6 +16,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 
 import h5py
@@ -256,6 +257,7 @@ class Interruption(unittest.TestCase):
         r = self.resume_and_compare(path)
         self.assertIn("is damaged", r.stdout)
         self.assertIn("moved to " + path + ".damaged", r.stdout)
+        self.assertIn("truncated file", r.stdout)  # HDF5's reason, not an empty one
         self.assertEqual(os.path.getsize(path + ".damaged"), size // 2)  # kept, untouched
 
     def test_a_half_written_part_is_removed_and_the_study_completes(self):
@@ -316,6 +318,69 @@ class Interruption(unittest.TestCase):
             self.assertEqual(text(f[f"runs/{first}"].attrs["status"]),
                              text(ref[f"runs/{first}"].attrs["status"]))
         self.resume_and_compare(path)
+
+    def test_a_second_sigint_abandons_the_run_in_flight(self):
+        path = os.path.join(scratch(), "int2.h5")
+        # huge-r1 (dearest) fails in milliseconds; T2S1-r1 takes about two seconds.
+        p, _ = self.start(path, "start  T2S1-r1")
+        p.send_signal(signal.SIGINT)
+        for line in p.stdout:
+            if line.startswith("interrupted (SIGINT): no new run starts"):
+                break
+        p.send_signal(signal.SIGINT)
+        out, _ = p.communicate()
+        self.assertEqual(p.returncode, 128 + signal.SIGINT, out)
+        self.assertIn("abandoning the 1 runs in flight", out)
+        with h5py.File(path, "r") as f:
+            self.assertEqual(list(f["runs"]), ["huge-r1"])  # T2S1-r1 was abandoned
+        self.resume_and_compare(path)
+
+    def test_a_reader_holding_the_archive_is_waited_for(self):
+        # h5py holds HDF5's file lock while the archive is open; the study waits for it
+        # (up to 10 s, study/study_store.cpp) instead of leaving the run in its part.
+        # With one attempt only, the "cannot open ... to append" note would show.
+        path = os.path.join(scratch(), "locked.h5")
+        parts = path + ".parts"
+        p = subprocess.Popen([BALLAST, "study", MIXED, "-o", path, "--jobs", "1",
+                              "--threads", "1", "--progress", "plain"],
+                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        reader = None
+        while reader is None:
+            try:
+                reader = h5py.File(path, "r")
+            except OSError:  # not created yet, or the study has it open
+                time.sleep(0.01)
+        while not (os.path.isdir(parts) and any(n.endswith(".h5") for n in os.listdir(parts))):
+            time.sleep(0.01)
+        time.sleep(3.0)  # the first finished run now waits for the reader
+        self.assertEqual(list(reader["runs"]), [])
+        reader.close()
+        out, _ = p.communicate(timeout=300)
+        self.assertEqual(p.returncode, 3, out)
+        self.assertNotIn("cannot open", out)
+        self.assertEqual(run_differences(REFERENCE[0], path), [])
+
+    def test_a_reader_that_stays_keeps_the_run_in_its_part_for_resume(self):
+        # The reader holds the archive through the study (only huge-r1 runs again): the
+        # run stays in its part, the study says why and how to finish (exit 1), and
+        # --resume, once the reader is gone, appends it.
+        folder = scratch()
+        path = os.path.join(folder, "held.h5")
+        shutil.copy(REFERENCE[0], path)
+        with h5py.File(path, "r"):
+            r = study(MIXED, "-o", path, "--resume", "--retry-failed", "--jobs", "1",
+                      "--threads", "1")
+        self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
+        self.assertIn("cannot open " + path + " to append (unable to lock file", r.stdout)
+        self.assertIn("1 finished runs could not be appended", r.stderr)
+        self.assertIn("--resume", r.stderr)
+        parts = [n for n in os.listdir(path + ".parts") if n.endswith(".h5")]
+        self.assertEqual(len(parts), 1, parts)  # huge-r1's, kept
+        r = study(MIXED, "-o", path, "--resume", "--jobs", "1", "--threads", "1")
+        self.assertEqual(r.returncode, 3, r.stdout + r.stderr)
+        self.assertNotIn("start ", r.stdout)  # nothing ran again
+        self.assertEqual(run_differences(REFERENCE[0], path), [])
+        self.assertFalse(os.path.exists(path + ".parts"))
 
 
 class Refusals(unittest.TestCase):
