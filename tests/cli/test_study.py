@@ -11,6 +11,7 @@ bit apart from timings.
 """
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -381,6 +382,47 @@ class Interruption(unittest.TestCase):
         self.assertNotIn("start ", r.stdout)  # nothing ran again
         self.assertEqual(run_differences(REFERENCE[0], path), [])
         self.assertFalse(os.path.exists(path + ".parts"))
+
+
+class LiveProgress(unittest.TestCase):
+    """--progress live redraws a block of lines (one per run in flight, then the counts)
+    in place with ANSI "cursor up n lines" and "clear to the end" codes."""
+
+    @staticmethod
+    def screen(raw, test):
+        """What a terminal shows after `raw`: each ESC[nF ESC[J removes the last n
+        lines, which must all be the board's (indented two spaces)."""
+        lines, erased_blocks = [], 0
+        pieces = re.split("\033\\[(\\d+)F\033\\[J", raw)  # text, count, text, ...
+        for k, piece in enumerate(pieces):
+            if k % 2:
+                n = int(piece)
+                test.assertGreaterEqual(len(lines), n)
+                for line in lines[-n:]:
+                    test.assertTrue(line.startswith("  "), f"erased a result line: {line!r}")
+                del lines[-n:]
+                erased_blocks += 1
+            else:
+                test.assertNotIn("\033", piece)  # no other escape code
+                lines.extend(piece.splitlines())
+        return lines, erased_blocks
+
+    def test_the_board_is_drawn_then_erased_leaving_one_line_per_run(self):
+        path = os.path.join(scratch(), "live.h5")
+        r = ballast("study", MIXED, "-o", path, "--jobs", "2", "--threads", "1",
+                    "--progress", "live")
+        self.assertEqual(r.returncode, 3, r.stderr)
+        # The board was drawn: a run in flight with its stage, and the counts line.
+        self.assertRegex(r.stdout, r"\n  \S+-r1 +\d+:\d\d  stage ")
+        self.assertIn(" running, ", r.stdout)
+        self.assertNotIn(" | stage", r.stdout)  # the run logs are for plain output
+        lines, erased = self.screen(r.stdout, self)
+        self.assertGreater(erased, 4)  # at least once per start and finish
+        # Nothing of the board is left; each run has its one result line.
+        self.assertFalse([l for l in lines if " running, " in l or "  stage " in l], lines)
+        results = sorted(l.split()[1] for l in lines if l.startswith(("ok ", "FAILED ")))
+        self.assertEqual(results, sorted(IDS))
+        self.assertEqual(run_differences(REFERENCE[0], path), [])
 
 
 class Refusals(unittest.TestCase):
