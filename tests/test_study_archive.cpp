@@ -13,6 +13,8 @@
 #include "study/study_archive.hpp"
 #include "study/study_json.hpp"
 #include "study/study_store.hpp"
+#include "study_text.hpp"
+#include "test_helpers.hpp"
 
 namespace ballast {
 namespace {
@@ -21,10 +23,10 @@ using namespace h5;
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+// Three runs, one per cycle count.
 StudySpec expand(std::uint64_t seed, const std::string& extra = "") {
-  const std::string text = R"({"name": "t", "scene": "s.json", "seed": )" + std::to_string(seed) +
-                           extra + R"(, "matrix": {"axes": {"cycles": [1, 2, 3]}}})";
-  return expand_study(parse_study_json(text, "t.json"), "t.json");
+  return study_text::expand(
+      study_text::with_matrix(R"({"axes": {"cycles": [1, 2, 3]}})", "s.json", seed, extra));
 }
 
 const json kScene = json::parse(R"({"name": "s", "particles": {"count": 2}})");
@@ -228,12 +230,8 @@ TEST_F(Store, ResumeRefusesAnotherStudyAndChangesNothing) {
   StudyStore::create(path("a.h5"), h, quiet);
   const auto before = fs::last_write_time(path("a.h5"));
   const StudyArchiveHeader other = make_archive_header(expand(2), "{}", "{}", kScene, Shard{});
-  try {
-    StudyStore::resume(path("a.h5"), other, quiet);
-    FAIL() << "another study's archive resumed";
-  } catch (const ArchiveRefused& e) {
-    EXPECT_NE(std::string(e.what()).find("holds another study"), std::string::npos) << e.what();
-  }
+  test_support::expect_error<ArchiveRefused>(
+      [&] { StudyStore::resume(path("a.h5"), other, quiet); }, {"holds another study"});
   EXPECT_EQ(fs::last_write_time(path("a.h5")), before);
 }
 

@@ -8,29 +8,21 @@
 
 #include "study/study_json.hpp"
 #include "study/study_matrix.hpp"
+#include "study_text.hpp"
 
 namespace ballast {
 namespace {
-
-StudySpec expand_text(const std::string& text) {
-  return expand_study(parse_study_json(text, "bad.json"), "bad.json");
-}
-
-// A study whose "matrix" is the given JSON text.
-std::string with_matrix(const std::string& matrix) {
-  return R"({"name": "t", "scene": "s.json", "seed": 1, "matrix": )" + matrix + "}";
-}
 
 // Expects a StudyError at `path` whose message holds the path and every fragment.
 void expect_refused(const std::string& text, const std::string& path,
                     std::initializer_list<const char*> fragments) {
   try {
-    expand_text(text);
+    study_text::expand(text);
     ADD_FAILURE() << "accepted: " << text;
   } catch (const StudyError& e) {
     const std::string what = e.what();
     EXPECT_EQ(e.path, path) << what;
-    EXPECT_EQ(what.rfind("bad.json at " + path + ": ", 0), 0u) << what;
+    EXPECT_EQ(what.rfind(study_text::kFile + " at " + path + ": ", 0), 0u) << what;
     for (const char* f : fragments) {
       EXPECT_NE(what.find(f), std::string::npos) << "'" << what << "' lacks '" << f << "'";
     }
@@ -39,7 +31,7 @@ void expect_refused(const std::string& text, const std::string& path,
 
 void expect_refused_matrix(const std::string& matrix, const std::string& path,
                            std::initializer_list<const char*> fragments) {
-  expect_refused(with_matrix(matrix), path, fragments);
+  expect_refused(study_text::with_matrix(matrix), path, fragments);
 }
 
 TEST(StudyErrors, UnknownTopLevelKey) {

@@ -10,15 +10,14 @@
 #include "study/study_json.hpp"
 #include "study/study_matrix.hpp"
 #include "study/study_run.hpp"
+#include "study_text.hpp"
 
 namespace ballast {
 namespace {
 
 // A study with the given "matrix" object (JSON text).
 StudySpec expand(const std::string& matrix, std::uint64_t seed = 2007) {
-  const std::string text = R"({"name": "t", "scene": "box_test/smoke.json", "seed": )" +
-                           std::to_string(seed) + R"(, "matrix": )" + matrix + "}";
-  return expand_study(parse_study_json(text, "test.json"), "test.json");
+  return study_text::expand(study_text::with_matrix(matrix, "box_test/smoke.json", seed));
 }
 
 std::vector<std::string> ids(const StudySpec& s) {
@@ -61,7 +60,7 @@ TEST(StudyMatrix, OrderIsSamplesThenAxesAsWrittenThenReplicates) {
   EXPECT_EQ(s.runs[35].sample, "T2S1");
   EXPECT_EQ(s.runs[35].replicate, 3);
   // Sorted-key JSON loses the order written: axes then nest alphabetically.
-  const StudySpec sorted = expand_study(nlohmann::json(s.source), "test.json");
+  const StudySpec sorted = expand_study(nlohmann::json(s.source), study_text::kFile);
   EXPECT_EQ(sorted.runs[3].id, "spheres-dt_safety=0.8-rotation=full-r1");
 }
 
