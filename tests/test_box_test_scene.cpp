@@ -7,6 +7,7 @@
 
 #include "cases/box_test_scene.hpp"
 #include "engine/errors.hpp"
+#include "test_helpers.hpp"
 
 using namespace ballast;
 using nlohmann::json;
@@ -14,12 +15,7 @@ using nlohmann::json;
 namespace {
 
 std::string error_of(const json& j) {
-  try {
-    parse_box_test_scene(j);
-  } catch (const SetupError& e) {
-    return e.what();
-  }
-  return "(accepted)";
+  return test_support::error_message([&] { parse_box_test_scene(j); });
 }
 
 }  // namespace

@@ -67,15 +67,27 @@ class ScopedThreads {
 // contains every fragment: the field, the value, what is allowed. Passes nothing
 // when f returns normally or throws something else.
 template <class E = SetupError, class F>
-void expect_error(F&& f, std::initializer_list<const char*> fragments) {
+void expect_error(F&& f, std::initializer_list<std::string> fragments) {
   try {
     f();
     ADD_FAILURE() << "nothing was thrown";
   } catch (const E& e) {
-    for (const char* frag : fragments)
+    for (const std::string& frag : fragments)
       EXPECT_NE(std::string(e.what()).find(frag), std::string::npos)
           << "message '" << e.what() << "' lacks '" << frag << "'";
   }
+}
+
+// The message of the E that f throws, or "(accepted)" when it returns normally: for
+// tests that compare several refusals' messages.
+template <class E = SetupError, class F>
+std::string error_message(F&& f) {
+  try {
+    f();
+  } catch (const E& e) {
+    return e.what();
+  }
+  return "(accepted)";
 }
 
 }  // namespace ballast::test_support

@@ -11,8 +11,12 @@
 
 #include "cases/packing_file.hpp"
 #include "engine/errors.hpp"
+#include "test_helpers.hpp"
 
 using namespace ballast;
+
+using ballast::test_support::error_message;
+using ballast::test_support::expect_error;
 
 namespace {
 
@@ -22,12 +26,7 @@ Packing parse(const std::string& text) {
 }
 
 std::string error_of(const std::string& text) {
-  try {
-    parse(text);
-  } catch (const SetupError& e) {
-    return e.what();
-  }
-  return "(accepted)";
+  return error_message([&] { parse(text); });
 }
 
 bool same_bits(double a, double b) {
@@ -195,11 +194,6 @@ TEST(PackingFile, BodyReappearingAfterAnotherIsRefused) {
 
 TEST(PackingFile, EmptyAndMissingFilesAreRefused) {
   EXPECT_NE(error_of("# only a comment\n\n").find("bed.txt: no particles"), std::string::npos);
-  try {
-    read_packing_file("/nonexistent/bed.txt");
-    FAIL() << "accepted a missing file";
-  } catch (const SetupError& e) {
-    EXPECT_NE(std::string(e.what()).find("cannot read packing file '/nonexistent/bed.txt'"),
-              std::string::npos);
-  }
+  expect_error([] { read_packing_file("/nonexistent/bed.txt"); },
+               {"cannot read packing file '/nonexistent/bed.txt'"});
 }

@@ -283,13 +283,8 @@ TEST(GridPorosity, RegionNotAMultipleOfTheSide) {
 
 TEST(GridPorosity, RefusesBadInputNamingTheField) {
   BallStore none;
-  const auto message = [&](const Vec3& lo, const Vec3& hi, double side) -> std::string {
-    try {
-      grid_porosity(none, lo, hi, side);
-    } catch (const SetupError& e) {
-      return e.what();
-    }
-    return "no error";
+  const auto message = [&](const Vec3& lo, const Vec3& hi, double side) {
+    return test_support::error_message([&] { grid_porosity(none, lo, hi, side); });
   };
   EXPECT_NE(message(Vec3::Zero(), Vec3::Ones(), 0.0).find("grid cube side"), std::string::npos);
   EXPECT_NE(message(Vec3::Zero(), Vec3(1, 0, 1), 0.1).find("grid hi.y"), std::string::npos);
