@@ -7,20 +7,16 @@ Run by ctest with the path of the ballast binary as the only argument:
 import json
 import math
 import os
-import subprocess
-import sys
 import tempfile
 import unittest
 
 import h5py
 import numpy as np
 
-BALLAST = None
+import binary
+from binary import ballast
+
 CASES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "cases")
-
-
-def ballast(*args):
-    return subprocess.run([BALLAST, *args], capture_output=True, text=True, timeout=300)
 
 
 class ClumpCommand(unittest.TestCase):
@@ -104,13 +100,11 @@ class RunCommand(unittest.TestCase):
         cls.vtk = os.path.join(cls.tmp.name, "vtk")
         cls.bed = os.path.join(cls.tmp.name, "bed.txt")
         scene = os.path.join(CASES, "box_test", "smoke.json")
-        r = ballast("run", scene, "-o", cls.archive, "--vtk", cls.vtk, "--json",
-                    "--threads", "1", "--export-packing", cls.bed)
-        assert r.returncode == 0, r.stderr
+        r = binary.succeed("run", scene, "-o", cls.archive, "--vtk", cls.vtk, "--json",
+                           "--threads", "1", "--export-packing", cls.bed)
         cls.spheres = json.loads(r.stdout)
-        r = ballast("run", scene, "--set", "/particles/shape=table2/sample1", "--json",
-                    "--threads", "1")
-        assert r.returncode == 0, r.stderr
+        r = binary.succeed("run", scene, "--set", "/particles/shape=table2/sample1", "--json",
+                           "--threads", "1")
         cls.clumps = json.loads(r.stdout)
 
     @classmethod
@@ -424,5 +418,4 @@ class BenchBedCommand(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    BALLAST = os.path.abspath(sys.argv.pop(1))
-    unittest.main(verbosity=2)
+    binary.main()

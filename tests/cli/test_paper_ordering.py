@@ -21,29 +21,24 @@ reports and this asserts, sample mean over the seeds:
 docs/VALIDATION.md has the full-scale figures and their intervals.
 """
 import os
-import subprocess
-import sys
 import tempfile
 import unittest
 
 import h5py
 import numpy as np
 
+import binary
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 STUDY = os.path.join(HERE, "..", "data", "ordering", "study.json")
-BALLAST = None
 RUNS = {}  # sample -> list of run attribute dicts (with a few derived values)
 
 
 def setUpModule():
     with tempfile.TemporaryDirectory() as tmp:
         archive = os.path.join(tmp, "ordering.h5")
-        done = subprocess.run([BALLAST, "study", STUDY, "-o", archive, "--jobs", "2",
-                               "--threads", "1", "--progress", "plain"],
-                              capture_output=True, text=True, timeout=900)
-        if done.returncode != 0:
-            raise RuntimeError(f"ballast study failed ({done.returncode}):\n{done.stdout}"
-                               f"\n{done.stderr}")
+        binary.succeed("study", STUDY, "-o", archive, "--jobs", "2", "--threads", "1",
+                       "--progress", "plain")
         with h5py.File(archive, "r") as f:
             for run in f["runs"].values():
                 a = dict(run.attrs)
@@ -85,5 +80,4 @@ class PaperOrdering(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    BALLAST = os.path.abspath(sys.argv.pop(1))
-    unittest.main()
+    binary.main()

@@ -24,9 +24,10 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import binary  # noqa: E402
 from archive_compare import differences, run_differences  # noqa: E402
+from binary import ballast  # noqa: E402
 
-BALLAST = None
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "..", "data", "study")
 MIXED = os.path.join(DATA, "mixed.json")
@@ -34,10 +35,6 @@ TINY = os.path.join(DATA, "tiny.json")
 IDS = ["spheres-r1", "huge-r1", "spheres_dt-r1", "T2S1-r1"]
 TMP = None
 REFERENCE = None  # (archive path, completed process)
-
-
-def ballast(*args, timeout=300):
-    return subprocess.run([BALLAST, *args], capture_output=True, text=True, timeout=timeout)
 
 
 def study(*args):
@@ -193,7 +190,7 @@ class Parallelism(unittest.TestCase):
         path = os.path.join(scratch(), "serial.h5")
         # Passive waiting: on a machine busy with other work, threads spinning at the
         # engine's barriers slow a 2-thread run a hundredfold (the results are the same).
-        r = subprocess.run([BALLAST, "study", MIXED, "-o", path, "--jobs", "1", "--threads", "2",
+        r = subprocess.run([binary.PATH, "study", MIXED, "-o", path, "--jobs", "1", "--threads", "2",
                             "--progress", "plain"], capture_output=True, text=True, timeout=300,
                            env=dict(os.environ, OMP_WAIT_POLICY="passive"))
         self.assertEqual(r.returncode, 3, r.stderr)
@@ -211,7 +208,7 @@ class Interruption(unittest.TestCase):
     def start(self, path, wait_for):
         """Starts the study on one job; returns it once a line starting with `wait_for`
         has been printed."""
-        p = subprocess.Popen([BALLAST, "study", MIXED, "-o", path, "--jobs", "1", "--threads",
+        p = subprocess.Popen([binary.PATH, "study", MIXED, "-o", path, "--jobs", "1", "--threads",
                               "1", "--progress", "plain"], stdout=subprocess.PIPE,
                              stderr=subprocess.PIPE, text=True)
         lines = []
@@ -342,7 +339,7 @@ class Interruption(unittest.TestCase):
         # With one attempt only, the "cannot open ... to append" note would show.
         path = os.path.join(scratch(), "locked.h5")
         parts = path + ".parts"
-        p = subprocess.Popen([BALLAST, "study", MIXED, "-o", path, "--jobs", "1",
+        p = subprocess.Popen([binary.PATH, "study", MIXED, "-o", path, "--jobs", "1",
                               "--threads", "1", "--progress", "plain"],
                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         reader = None
@@ -525,7 +522,7 @@ class Shards(unittest.TestCase):
     def test_slurm_script_runs_the_shards_then_merges_them(self):
         d = scratch()
         env = dict(os.environ, PATH=os.path.join(HERE, "fake_slurm") + os.pathsep + os.environ["PATH"],
-                   FAKE_SBATCH_LOG=os.path.join(d, "sbatch.log"), BALLAST=BALLAST)
+                   FAKE_SBATCH_LOG=os.path.join(d, "sbatch.log"), BALLAST=binary.PATH)
         script = os.path.join(HERE, "..", "..", "scripts", "slurm_study.sh")
         r = subprocess.run([script, MIXED, d, "2", "--cpus-per-task=1"], capture_output=True,
                            text=True, env=env, timeout=300)
@@ -597,5 +594,4 @@ class BadInput(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    BALLAST = os.path.abspath(sys.argv.pop(1))
-    unittest.main(verbosity=2)
+    binary.main()

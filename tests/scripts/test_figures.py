@@ -26,13 +26,14 @@ ROOT = os.path.join(HERE, "..", "..")
 SCRIPTS = os.path.join(ROOT, "scripts")
 sys.path.insert(0, SCRIPTS)
 sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, "..", "cli"))
 
+import binary  # noqa: E402
 import fig_displacements  # noqa: E402
 import fig_rotations  # noqa: E402
 from ballast_archive import open_archive  # noqa: E402
 from study_fixture import make_study  # noqa: E402
 
-BALLAST = None
 # 50 particles, softer balls and walls (dt 2 µs instead of 0.6 µs), a 3 kN pulse.
 TINY = ["--set", "/particles/count=50", "--set", "/box/length=0.2", "--set", "/box/width=0.1",
         "--set", "/sleeper/length=0.08", "--set", "/sleeper/preload=300",
@@ -70,13 +71,9 @@ class Figures(unittest.TestCase):
         scene = os.path.join(ROOT, "cases", "box_test", "smoke.json")
         for path, extra in ((cls.spheres, []),
                             (cls.clumps, ["--set", "/particles/shape=table2/sample1"])):
-            r = subprocess.run([BALLAST, "run", scene, *TINY, *extra, "--threads", "1", "-o",
-                                path], capture_output=True, text=True, timeout=300)
-            assert r.returncode == 0, r.stderr
-        r = subprocess.run([BALLAST, "clump", "--preset", "table2/sample1", "--count", "50",
-                            "--seed", "1", "-o", cls.templates], capture_output=True,
-                           text=True, timeout=300)
-        assert r.returncode == 0, r.stderr
+            binary.succeed("run", scene, *TINY, *extra, "--threads", "1", "-o", path)
+        binary.succeed("clump", "--preset", "table2/sample1", "--count", "50", "--seed", "1",
+                       "-o", cls.templates)
         with h5py.File(cls.spheres, "r") as f:
             base_scene = f.attrs["scene_json"]
         make_study(cls.study, base_scene, [
@@ -277,5 +274,4 @@ class Scales(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    BALLAST = sys.argv.pop(1)
-    unittest.main()
+    binary.main()
