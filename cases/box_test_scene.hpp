@@ -44,7 +44,7 @@ struct BoxTestScene {
   double local_damping = 0.7;
   RotationIntegrator rotation = RotationIntegrator::kPfc;
   // Neighbour builds also when they lower the mean cost per step (engine/rebuild_policy.hpp);
-  // false: only the half-skin rule, as before 2026-12-03 (each build re-estimates dt).
+  // false: only the half-skin rule (each build re-estimates dt).
   bool adaptive_rebuild = true;
   // preparation (PFC radius expansion, then gravity compaction)
   double initial_porosity = 0.5;      // of the grown spheres in their fill region (loose:

@@ -5,7 +5,7 @@
 
 using namespace ballast;
 
-// A line as a 2-vCPU guest's kernel writes it (this project's VM, 2026-12-03):
+// A line as a 2-vCPU guest's kernel writes it (copied from a development VM):
 // user nice system idle iowait irq softirq steal guest guest_nice.
 TEST(HostSteal, ParsesTheAggregateCpuLine) {
   const auto t = parse_proc_stat(
