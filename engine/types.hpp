@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <vector>
 
 namespace ballast {
 
@@ -18,5 +19,15 @@ using Index = std::int32_t;
 inline constexpr Index kNoIndex = -1;
 
 inline constexpr double kPi = 3.14159265358979323846;
+
+// The first coordinate of a vector of 3-vectors, as the flat x0 y0 z0 x1 ... array the
+// SIMD kernels read; nullptr when it is empty (v.data()->data() would then reach
+// through a null pointer: undefined, and caught by -fsanitize=undefined).
+inline double* flat(std::vector<Vec3>& v) {
+  return v.empty() ? nullptr : v.data()->data();
+}
+inline const double* flat(const std::vector<Vec3>& v) {
+  return v.empty() ? nullptr : v.data()->data();
+}
 
 }  // namespace ballast
