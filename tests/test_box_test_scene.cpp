@@ -84,6 +84,27 @@ TEST(BoxTestScene, BadInputNamesPathValueAndAllowed) {
   EXPECT_NE(sphere_clump.find("/particles/clump"), std::string::npos) << sphere_clump;
 }
 
+TEST(BoxTestScene, ABedThatCannotFormInItsBoxIsRefusedWhileParsing) {
+  // The paper's 1,936 spheres of 36.25 mm, loose at porosity 0.5, hold
+  // 1936·π·d³/6 / 0.5 = 0.0966 m³: one diameter deep over at most 2.66 m² of floor,
+  // and 1.8 box heights (0.81 m) over the 0.7 × 0.3 m floor at most 3,410 of them.
+  EXPECT_EQ(error_of(json::object()), "(accepted)");
+  EXPECT_EQ(error_of({{"box", {{"length", 8.8}}}}), "(accepted)");  // 2.64 m²
+  const std::string wide = error_of({{"box", {{"length", 8.9}}}});  // 2.67 m²
+  EXPECT_NE(wide.find("/box/length x /box/width = 2.67"), std::string::npos) << wide;
+  EXPECT_NE(wide.find("at most 2.66"), std::string::npos) << wide;
+  EXPECT_EQ(error_of({{"particles", {{"count", 3400}}}}), "(accepted)");
+  const std::string many = error_of({{"particles", {{"count", 3420}}}});
+  EXPECT_NE(many.find("/particles/count = 3420"), std::string::npos) << many;
+  EXPECT_NE(many.find("1.8 box heights"), std::string::npos) << many;
+  const std::string big = error_of({{"particles", {{"diameter", 0.31}}}});
+  EXPECT_NE(big.find("/particles/diameter = 0.31"), std::string::npos) << big;
+  EXPECT_NE(big.find("smallest side, 0.3"), std::string::npos) << big;
+  // What a new user tried: a box a kilometre long.
+  EXPECT_NE(error_of({{"box", {{"length", 1e6}}}}).find("/box/length x /box/width"),
+            std::string::npos);
+}
+
 TEST(BoxTestScene, SeedTakesAll64Bits) {
   // A study run's seed is a 64-bit hash (docs/STUDY.md): above INT64_MAX too.
   const json top = json::parse(R"({"particles": {"seed": 18446744073709551615}})");

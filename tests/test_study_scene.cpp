@@ -23,7 +23,8 @@ const json kBase = json::parse(R"({
   "name": "base",
   "particles": {"shape": "table1/sample3", "count": 40, "seed": 1,
                 "clump": {"c": 0.4}},
-  "sleeper": {"cycles": 1}})");
+  "box": {"length": 0.2, "width": 0.12},
+  "sleeper": {"cycles": 1, "length": 0.1}})");
 
 StudySpec expand(const std::string& matrix) {
   return study_text::expand(study_text::with_matrix(matrix));
