@@ -13,6 +13,7 @@
 #include "cases/box_test_load.hpp"
 #include "cases/packing_bodies.hpp"
 #include "engine/errors.hpp"
+#include "study/output_paths.hpp"
 #include "study/run_archive.hpp"
 #include "study/run_summary.hpp"
 #include "study/run_vtk.hpp"
@@ -66,14 +67,10 @@ void run(const RunOptions& o) {
   } catch (const SetupError& e) {
     throw SetupError("scene file '" + o.scene + "': " + e.what());
   }
-  if (!o.export_packing.empty()) {
-    // Refused now rather than after a run of many minutes.
-    const std::filesystem::path dir = std::filesystem::path(o.export_packing).parent_path();
-    if (!dir.empty() && !std::filesystem::is_directory(dir))
-      throw SetupError("invalid --export-packing = '" + o.export_packing +
-                       "' (allowed: a file in " + "an existing directory; '" + dir.string() +
-                       "' is not one)");
-  }
+  // Refused now rather than after a run of many minutes.
+  if (!o.output.empty()) check_writable_file("-o", o.output);
+  if (!o.vtk_dir.empty()) check_writable_directory("--vtk", o.vtk_dir);
+  if (!o.export_packing.empty()) check_writable_file("--export-packing", o.export_packing);
   std::ostream* log = o.json ? &std::cerr : &std::cout;
   *log << "box test '" << scene.name << "' on " << omp_get_max_threads() << " thread(s)\n";
   const auto export_bed = [&](const Simulation& sim) {

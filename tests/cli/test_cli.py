@@ -277,6 +277,25 @@ class RunCommand(unittest.TestCase):
             self.assertIn("> 0 Hz", r.stderr)
             self.assertFalse(os.path.exists(out))
 
+    def test_an_output_it_cannot_write_is_refused_before_the_run(self):
+        # Each would otherwise be found only when the results are written, after the
+        # whole simulation (issue 29). /proc takes no new file, even for root.
+        scene = os.path.join(CASES, "box_test", "smoke.json")
+        with tempfile.TemporaryDirectory() as tmp:
+            for option, path, cause in (
+                    ("-o", "/nonexistent/run.h5", "'/nonexistent' is not a directory"),
+                    ("-o", tmp, "it is a directory"),
+                    ("-o", "/proc/run.h5", "its directory does not take a new file"),
+                    ("--vtk", "/proc/vtk", "No such file or directory"),
+                    ("--export-packing", "/proc/bed.txt",
+                     "its directory does not take a new file")):
+                with self.subTest(option=option, path=path):
+                    r = ballast("run", scene, option, path, timeout=30)
+                    self.assertEqual(r.returncode, 2, r.stderr)
+                    self.assertIn(f"cannot write {option} = '{path}': {cause}", r.stderr)
+                    self.assertIn("nothing was run", r.stderr)
+                    self.assertNotIn("stage 1", r.stdout)
+
 
 class BenchBedCommand(unittest.TestCase):
     """`ballast bench-bed`, the peer benchmark's run of our engine (issue 7)."""
