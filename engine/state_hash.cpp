@@ -1,29 +1,11 @@
 #include "engine/state_hash.hpp"
 
+#include "engine/fnv1a.hpp"
 #include "engine/simulation.hpp"
 
 namespace ballast {
 
 namespace {
-
-// FNV-1a over raw bytes: simple, and sensitive to every bit of every double.
-struct Fnv1a {
-  std::uint64_t h = 14695981039346656037ull;
-  void bytes(const void* p, std::size_t n) {
-    const auto* c = static_cast<const unsigned char*>(p);
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ c[i]) * 1099511628211ull;
-  }
-  template <class T>
-  void value(const T& v) {
-    bytes(&v, sizeof(v));
-  }
-  // The size first, so that moving an element from one vector to the next shows.
-  template <class V>
-  void all(const V& v) {
-    value(v.size());
-    if (!v.empty()) bytes(v.data(), v.size() * sizeof(v[0]));
-  }
-};
 
 // Vec3 and Quat are plain doubles, no padding: their bytes are their values.
 static_assert(sizeof(Vec3) == 3 * sizeof(double));

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "cases/clump_presets.hpp"
+#include "engine/fnv1a.hpp"  // fnv1a64: a run's text into its seed
 
 namespace ballast {
 
@@ -19,8 +20,6 @@ bool is_id_char(char ch);
 bool is_safe_name(std::string_view name);
 inline constexpr const char* kSafeNameRule = "a non-empty string of letters, digits and . _ + -";
 
-// 64-bit FNV-1a of the bytes.
-std::uint64_t fnv1a64(std::string_view bytes);
 // One step of splitmix64 (Steele, Lea & Flood 2014): a bijective 64-bit mixer.
 std::uint64_t splitmix64(std::uint64_t x);
 
