@@ -28,7 +28,9 @@ T& writable(const T& x) {
 }
 
 // The last bit of the mantissa: the smallest change a double can take.
-void flip(double& v) { v = std::bit_cast<double>(std::bit_cast<std::uint64_t>(v) ^ 1u); }
+void flip(double& v) {
+  v = std::bit_cast<double>(std::bit_cast<std::uint64_t>(v) ^ 1u);
+}
 
 // A sphere sliding on a base under a clump that spins on the `full` integrator, a
 // servo-driven lid above: contacts with shear history, dashpots, local damping,
@@ -47,8 +49,9 @@ Simulation scene() {
   const Index sphere = sim.add_sphere(Vec3(0, 0, 0.0199), 0.02, 2600, mat);
   const std::vector<Vec3> offsets{Vec3(-0.015, 0, 0), Vec3(0.015, 0, 0)};
   const std::vector<double> radii{0.015, 0.015};
-  const Index clump = sim.add_clump(Vec3(0.015, 0, 0.05), Quat(Eigen::AngleAxisd(0.3, Vec3::UnitY())),
-                                    offsets, radii, 0.07, Vec3(1e-5, 2e-5, 2e-5), mat);
+  const Index clump =
+      sim.add_clump(Vec3(0.015, 0, 0.05), Quat(Eigen::AngleAxisd(0.3, Vec3::UnitY())), offsets,
+                    radii, 0.07, Vec3(1e-5, 2e-5, 2e-5), mat);
   Servo servo;
   servo.walls = {lid};
   servo.target_force = [](double) { return 10.0; };
@@ -85,8 +88,7 @@ TEST(StateHash, SeesALastBitFlipInEveryReportedQuantity) {
       {"angular momentum", [&](Simulation& s) { flip(bodies(s).angular_momentum[1].y()); }},
       {"orientation", [&](Simulation& s) { flip(bodies(s).orientation[1].coeffs()[1]); }},
       {"accumulated rotation", [&](Simulation& s) { flip(bodies(s).rotation[1].z()); }},
-      {"displacement reference",
-       [&](Simulation& s) { flip(bodies(s).reference_position[0].x()); }},
+      {"displacement reference", [&](Simulation& s) { flip(bodies(s).reference_position[0].x()); }},
       {"force", [&](Simulation& s) { flip(bodies(s).force[0].z()); }},
       {"torque", [&](Simulation& s) { flip(bodies(s).torque[1].y()); }},
       {"gravity work", [&](Simulation& s) { flip(bodies(s).gravity_work[0]); }},

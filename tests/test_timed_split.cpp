@@ -143,9 +143,13 @@ TEST(TimedSplit, ForcedSharesRefuseAWrongRule) {
   s.prepare(2);
   EXPECT_THROW(s.force_shares([](long, int) { return std::vector<double>{1.0}; }),
                std::invalid_argument);
-  EXPECT_THROW(s.force_shares([](long, int) { return std::vector<double>{0.0, 0.0}; }),
+  EXPECT_THROW(s.force_shares([](long, int) {
+    return std::vector<double>{0.0, 0.0};
+  }),
                std::invalid_argument);
-  EXPECT_THROW(s.force_shares([](long, int) { return std::vector<double>{2.0, -1.0}; }),
+  EXPECT_THROW(s.force_shares([](long, int) {
+    return std::vector<double>{2.0, -1.0};
+  }),
                std::invalid_argument);
 }
 
