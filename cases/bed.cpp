@@ -62,10 +62,13 @@ Simulation make_bed(const BedOptions& o) {
   s.adaptive_rebuild = o.adaptive_rebuild;
   s.fixed_dt = o.fixed_dt;
   s.simd_lanes = o.simd_lanes;
+  s.contact_law = o.contact_law;
   s.log = o.log;
   Simulation sim(s);
-  // Balls and side walls share one material; the base is rubber or the same.
-  const Material stiff{o.stiffness, o.stiffness, o.friction};
+  // Balls and side walls share one material (for Hertz–Mindlin, granite's moduli);
+  // the base is rubber or the same.
+  const Material stiff{o.stiffness, o.stiffness, o.friction, box_test::kBallastYoungModulus,
+                       box_test::kBallastPoissonRatio};
   const Index mat = sim.add_material(stiff);
   const Material base = o.rubber_base ? box_test::rubber_base(o.friction) : stiff;
   for (const Wall& w : box_container(lo, hi, stiff, base, /*open_top=*/true)) sim.add_wall(w);

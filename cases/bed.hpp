@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <iosfwd>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "cases/box_test.hpp"
@@ -30,7 +31,8 @@ struct BedOptions {
   double volume_fraction = 0.3;  // of the loose random cloud the particles start as
   bool spatial_order = true;     // false: bodies numbered at random (to measure locality)
   double friction = box_test::kFrictionCompaction;
-  double stiffness = box_test::kBallStiffness;  // N/m, balls and side walls
+  std::string contact_law = "linear";           // SimulationSettings::contact_law
+  double stiffness = box_test::kBallStiffness;  // N/m, balls and side walls (linear law)
   bool rubber_base = true;                      // false: the base is as stiff as the sides
   double local_damping = 0.7;
   double damping_ratio = 0.0;

@@ -2,13 +2,34 @@
 
 #include <algorithm>
 
+#include "engine/contact_laws.hpp"
+
 namespace ballast {
 
 namespace {
 
-double contact_elastic_energy(double fn, const Vec3* fs, double kn, double ks) {
-  double e = kn > 0.0 ? 0.5 * fn * fn / kn : 0.0;
-  if (fs && ks > 0.0) e += 0.5 * fs->squaredNorm() / ks;
+// The energy stored in the springs of every touching contact, by the law's formula.
+template <class Law>
+double elastic_energy(const BallStore& balls, const std::vector<Material>& materials,
+                      const std::vector<Wall>& walls, const ContactList& bc,
+                      const ContactList& wc) {
+  double e = 0.0;
+  const auto shear2 = [](const ContactList& cl, Index c) {
+    return cl.has_history() ? cl.shear_force[c].squaredNorm() : 0.0;
+  };
+  for (Index c = 0; c < bc.size(); ++c) {
+    if (!bc.active[c]) continue;
+    const Index a = bc.a[c], b = bc.b[c];
+    const PairProperties p = Law::mix(materials[balls.material[a]], materials[balls.material[b]]);
+    const double ra = balls.radius[a], rb = balls.radius[b];
+    e += Law::elastic_energy(p, ra * rb / (ra + rb), bc.normal_force[c], shear2(bc, c));
+  }
+  for (Index c = 0; c < wc.size(); ++c) {
+    if (!wc.active[c]) continue;
+    const Index a = wc.a[c];
+    const PairProperties p = Law::mix(materials[balls.material[a]], walls[wc.b[c]].material);
+    e += Law::elastic_energy(p, balls.radius[a], wc.normal_force[c], shear2(wc, c));
+  }
   return e;
 }
 
@@ -16,7 +37,8 @@ double contact_elastic_energy(double fn, const Vec3* fs, double kn, double ks) {
 
 EnergyBudget energy_budget(const BallStore& balls, const BodyStore& bodies,
                            const std::vector<Material>& materials, const std::vector<Wall>& walls,
-                           const ContactList& bc, const ContactList& wc, double wall_work) {
+                           const ContactList& bc, const ContactList& wc, double wall_work,
+                           int law) {
   EnergyBudget e;
   for (Index b = 0; b < bodies.size(); ++b) {
     e.kinetic_translational += 0.5 * bodies.mass[b] * bodies.velocity[b].squaredNorm();
@@ -37,22 +59,8 @@ EnergyBudget energy_budget(const BallStore& balls, const BodyStore& bodies,
       e.friction_dissipated += cl->slip_total[c];
       e.viscous_dissipated += cl->viscous_total[c];
     }
-  for (Index c = 0; c < bc.size(); ++c) {
-    if (!bc.active[c]) continue;
-    const Material& ma = materials[balls.material[bc.a[c]]];
-    const Material& mb = materials[balls.material[bc.b[c]]];
-    e.elastic +=
-        contact_elastic_energy(bc.normal_force[c], bc.has_history() ? &bc.shear_force[c] : nullptr,
-                               series_stiffness(ma.kn, mb.kn), series_stiffness(ma.ks, mb.ks));
-  }
-  for (Index c = 0; c < wc.size(); ++c) {
-    if (!wc.active[c]) continue;
-    const Material& ma = materials[balls.material[wc.a[c]]];
-    const Material& mw = walls[wc.b[c]].material;
-    e.elastic +=
-        contact_elastic_energy(wc.normal_force[c], wc.has_history() ? &wc.shear_force[c] : nullptr,
-                               series_stiffness(ma.kn, mw.kn), series_stiffness(ma.ks, mw.ks));
-  }
+  e.elastic = with_contact_law(
+      law, [&](auto l) { return elastic_energy<decltype(l)>(balls, materials, walls, bc, wc); });
   e.wall_work = wall_work;
   return e;
 }

@@ -45,7 +45,7 @@ struct ContactStats {
 EnergyBudget energy_budget(const BallStore& balls, const BodyStore& bodies,
                            const std::vector<Material>& materials, const std::vector<Wall>& walls,
                            const ContactList& ball_contacts, const ContactList& wall_contacts,
-                           double wall_work);
+                           double wall_work, int law);
 
 ContactStats contact_stats(const BodyStore& bodies, const ContactList& ball_contacts,
                            const ContactList& wall_contacts);

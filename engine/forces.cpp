@@ -5,7 +5,7 @@
 
 #include <omp.h>
 
-#include "engine/contact_law.hpp"
+#include "engine/contact_laws.hpp"
 #include "engine/sphere_kernel.hpp"
 #include "engine/work_split.hpp"
 
@@ -90,22 +90,17 @@ template <bool kDamped>
   return load(bodies.velocity[b]) + cross(load(bodies.angular_velocity[b]), arm);
 }
 
-template <bool kFriction, bool kDamped>
+// The law's force on one contact whose geometry and velocity `st` holds, with the
+// contact's shear history in and out and its bookkeeping recorded.
+template <class Law, bool kFriction, bool kDamped>
 [[gnu::always_inline]] inline ContactResult evaluate(const ContactView& cl, Index c,
                                                      ContactState& st, const PairProperties& pp,
-                                                     const ForceSettings& s, double m_eff) {
-  st.kn = pp.kn;
-  st.ks = pp.ks;
-  st.mu = pp.mu;
-  st.cn = st.cs = 0.0;
-  if constexpr (kDamped) {
-    st.cn = dashpot_coefficient(s.damping_ratio, m_eff, st.kn);
-    st.cs = dashpot_coefficient(s.damping_ratio, m_eff, st.ks);
-  }
+                                                     const ForceSettings& s) {
+  st.damping_ratio = s.damping_ratio;
   st.dt = s.dt;
   V3 hist{0.0, 0.0, 0.0};
   if constexpr (kFriction) hist = load(cl.shear_force[c]);
-  const ContactResult r = linear_contact<kFriction, kDamped>(st, hist);
+  const ContactResult r = Law::template force<kFriction, kDamped>(st, pp, hist);
   if constexpr (kFriction) store(cl.shear_force[c], hist);
   record<kDamped>(cl, c, r);
   return r;
@@ -115,7 +110,7 @@ template <bool kFriction, bool kDamped>
 // (f, t) and stores the wrench on b. kSpheres: every body is one ball and ball k
 // is body k (ForceSettings::all_spheres), so neither the owners nor the sphere
 // flags are read and the clump path is not compiled in.
-template <bool kFriction, bool kDamped, bool kSpheres>
+template <class Law, bool kFriction, bool kDamped, bool kSpheres>
 [[gnu::always_inline]] inline void ball_ball(const BallView& balls, const BodyView& bodies,
                                              const PairTable& pairs, const ForceSettings& s,
                                              const ContactView& cl, Index c, Index i, const V3& xi,
@@ -134,13 +129,13 @@ template <bool kFriction, bool kDamped, bool kSpheres>
   const V3 normal = (1.0 / dist) * d;  // from j towards i
   const double overlap = reach - dist;
   const Index bi = kSpheres ? i : balls.body[i], bj = kSpheres ? j : balls.body[j];
-  double m_eff = 0.0;
-  if constexpr (kDamped)
-    m_eff = bodies.mass[bi] * bodies.mass[bj] / (bodies.mass[bi] + bodies.mass[bj]);
   const PairProperties& pp = pairs.balls(balls.material[i], balls.material[j]);
   ContactState st;
   st.overlap = overlap;
   st.normal = normal;
+  if constexpr (Law::kUsesRadius) st.radius = ri * rj / (ri + rj);
+  if constexpr (kDamped)
+    st.m_eff = bodies.mass[bi] * bodies.mass[bj] / (bodies.mass[bi] + bodies.mass[bj]);
   // The contact point sits mid-overlap: li from i's centre, lj from j's.
   const double li = ri - 0.5 * overlap, lj = rj - 0.5 * overlap;
   if (kSpheres || (bodies.is_sphere[bi] && bodies.is_sphere[bj])) {
@@ -149,7 +144,7 @@ template <bool kFriction, bool kDamped, bool kSpheres>
     st.vrel = (load(bodies.velocity[bi]) - load(bodies.velocity[bj])) -
               cross(li * load(bodies.angular_velocity[bi]) + lj * load(bodies.angular_velocity[bj]),
                     normal);
-    const ContactResult r = evaluate<kFriction, kDamped>(cl, c, st, pp, s, m_eff);
+    const ContactResult r = evaluate<Law, kFriction, kDamped>(cl, c, st, pp, s);
     const V3 nxf = cross(normal, r.force);
     f += r.force;
     t += (-li) * nxf;
@@ -162,7 +157,7 @@ template <bool kFriction, bool kDamped, bool kSpheres>
     const V3 p = xj + lj * normal;
     const V3 arm_i = p - load(bodies.position[bi]), arm_j = p - load(bodies.position[bj]);
     st.vrel = velocity_at(bodies, bi, arm_i) - velocity_at(bodies, bj, arm_j);
-    const ContactResult r = evaluate<kFriction, kDamped>(cl, c, st, pp, s, m_eff);
+    const ContactResult r = evaluate<Law, kFriction, kDamped>(cl, c, st, pp, s);
     f += r.force;
     t += cross(arm_i, r.force);
     const V3 minus = -r.force;
@@ -173,7 +168,7 @@ template <bool kFriction, bool kDamped, bool kSpheres>
 
 // Ball–wall contact c of ball i. Adds the wrench on i to (f, t) and stores the force
 // on the wall.
-template <bool kFriction, bool kDamped, bool kSpheres>
+template <class Law, bool kFriction, bool kDamped, bool kSpheres>
 [[gnu::always_inline]] inline void ball_wall(const BallView& balls, const BodyView& bodies,
                                              const PairTable& pairs, const std::vector<Wall>& walls,
                                              const ForceSettings& s, const ContactView& cl, Index c,
@@ -202,8 +197,10 @@ template <bool kFriction, bool kDamped, bool kSpheres>
   st.overlap = overlap;
   st.normal = normal;
   st.vrel = velocity_at(bodies, bi, arm) - load(w.velocity);
-  const ContactResult res = evaluate<kFriction, kDamped>(
-      cl, c, st, pairs.wall(balls.material[i], cl.b[c]), s, kDamped ? bodies.mass[bi] : 0.0);
+  if constexpr (Law::kUsesRadius) st.radius = r;
+  if constexpr (kDamped) st.m_eff = bodies.mass[bi];
+  const ContactResult res =
+      evaluate<Law, kFriction, kDamped>(cl, c, st, pairs.wall(balls.material[i], cl.b[c]), s);
   f += res.force;
   t += cross(arm, res.force);
   store(cl.b_wrench[c].force, -res.force);
@@ -225,7 +222,7 @@ void sphere_pass_simd(const BallStore& ball_store, const BodyStore& body_store,
   k.velocity = flat(body_store.velocity);
   k.angular_velocity = flat(body_store.angular_velocity);
   k.material = ball_store.material.data();
-  k.pair = &pairs.balls(0, 0).kn;
+  k.pair = &pairs.balls(0, 0).normal;
   k.materials = pairs.ball_materials();
   k.dt = s.dt;
   k.b = bc_list.b.data();
@@ -250,14 +247,14 @@ void sphere_pass_simd(const BallStore& ball_store, const BodyStore& body_store,
   for (Index c = wc.a_first[lo]; c < wc.a_first[hi]; ++c) {
     const Index i = wall_a[c];
     V3 f = load(a_side[i].force), t = load(a_side[i].torque);
-    ball_wall<kFriction, false, true>(balls, bodies, pairs, walls, s, wc, c, i,
-                                      load(balls.position[i]), balls.radius[i], f, t);
+    ball_wall<LinearLaw, kFriction, false, true>(balls, bodies, pairs, walls, s, wc, c, i,
+                                                 load(balls.position[i]), balls.radius[i], f, t);
     store(a_side[i].force, f);
     store(a_side[i].torque, t);
   }
 }
 
-template <bool kFriction, bool kDamped, bool kSpheres>
+template <class Law, bool kFriction, bool kDamped, bool kSpheres>
 void contact_pass(const BallStore& ball_store, const BodyStore& body_store, const PairTable& pairs,
                   const std::vector<Wall>& walls, const ForceSettings& s, ContactList& bc_list,
                   ContactList& wc_list, std::vector<Wrench>& a_side_store) {
@@ -288,7 +285,9 @@ void contact_pass(const BallStore& ball_store, const BodyStore& body_store, cons
       },
       s.split);
   if (s.refresh_live) bc_list.refresh_live_a(ball_start(lo), ball_start(hi));
-  if constexpr (kSpheres && !kDamped) {
+  // The kernel evaluates the linear law only (LinearLaw::kSphereKernel): a scene of
+  // another law never reaches it, whatever the caller set.
+  if constexpr (kSpheres && !kDamped && Law::kSphereKernel) {
     if (s.sphere_kernel_lanes > 0) {
       sphere_pass_simd<kFriction>(ball_store, body_store, pairs, walls, s, bc_list, wc_list,
                                   a_side_store, lo, hi);
@@ -307,49 +306,53 @@ void contact_pass(const BallStore& ball_store, const BodyStore& body_store, cons
       // The live candidates only: one left off is a far candidate that was not
       // touching and still is not, with nothing to evaluate or clear.
       for (Index e = bc.a_first[i]; e < bc.live_a_end[i]; ++e)
-        ball_ball<kFriction, kDamped, kSpheres>(balls, bodies, pairs, s, bc, bc.live_a[e], i, x, r,
-                                                f, t);
+        ball_ball<Law, kFriction, kDamped, kSpheres>(balls, bodies, pairs, s, bc, bc.live_a[e], i,
+                                                     x, r, f, t);
       if (has_walls)
         for (Index c = wc.a_first[i]; c < wc.a_first[i + 1]; ++c)
-          ball_wall<kFriction, kDamped, kSpheres>(balls, bodies, pairs, walls, s, wc, c, i, x, r, f,
-                                                  t);
+          ball_wall<Law, kFriction, kDamped, kSpheres>(balls, bodies, pairs, walls, s, wc, c, i, x,
+                                                       r, f, t);
     }
     store(a_side[body].force, f);
     store(a_side[body].torque, t);
   }
 }
 
-template <bool kFriction, bool kDamped>
+template <class Law, bool kFriction, bool kDamped>
 void contact_pass_for(const BallStore& balls, const BodyStore& bodies, const PairTable& pairs,
                       const std::vector<Wall>& walls, const ForceSettings& s, ContactList& bc,
                       ContactList& wc, std::vector<Wrench>& a_side) {
   if (s.all_spheres)
-    contact_pass<kFriction, kDamped, true>(balls, bodies, pairs, walls, s, bc, wc, a_side);
+    contact_pass<Law, kFriction, kDamped, true>(balls, bodies, pairs, walls, s, bc, wc, a_side);
   else
-    contact_pass<kFriction, kDamped, false>(balls, bodies, pairs, walls, s, bc, wc, a_side);
+    contact_pass<Law, kFriction, kDamped, false>(balls, bodies, pairs, walls, s, bc, wc, a_side);
 }
 
 }  // namespace
 
-// One instantiation per combination of friction, dashpots and sphere-only scene, so
-// that a scene pays for none of them it does not use, not even a branch per contact.
+// One instantiation per law and combination of friction, dashpots and sphere-only
+// scene, so that a scene pays for none of them it does not use, not even a branch per
+// contact.
 void compute_contacts(const BallStore& balls, const BodyStore& bodies, const PairTable& pairs,
                       const std::vector<Wall>& walls, const ForceSettings& s,
                       ContactList& ball_contacts, ContactList& wall_contacts,
                       std::vector<Wrench>& a_side) {
   const bool damped = s.damping_ratio > 0.0;
-  if (s.friction && damped)
-    contact_pass_for<true, true>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts,
-                                 a_side);
-  else if (s.friction)
-    contact_pass_for<true, false>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts,
-                                  a_side);
-  else if (damped)
-    contact_pass_for<false, true>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts,
-                                  a_side);
-  else
-    contact_pass_for<false, false>(balls, bodies, pairs, walls, s, ball_contacts, wall_contacts,
-                                   a_side);
+  with_contact_law(s.law, [&](auto law) {
+    using Law = decltype(law);
+    if (s.friction && damped)
+      contact_pass_for<Law, true, true>(balls, bodies, pairs, walls, s, ball_contacts,
+                                        wall_contacts, a_side);
+    else if (s.friction)
+      contact_pass_for<Law, true, false>(balls, bodies, pairs, walls, s, ball_contacts,
+                                         wall_contacts, a_side);
+    else if (damped)
+      contact_pass_for<Law, false, true>(balls, bodies, pairs, walls, s, ball_contacts,
+                                         wall_contacts, a_side);
+    else
+      contact_pass_for<Law, false, false>(balls, bodies, pairs, walls, s, ball_contacts,
+                                          wall_contacts, a_side);
+  });
 }
 
 }  // namespace ballast

@@ -25,11 +25,13 @@ namespace ballast {
 
 struct ForceSettings {
   double dt = 0.0;             // s
+  int law = 0;                 // the contact law, a number of ContactLaws (contact_laws.hpp)
   double damping_ratio = 0.0;  // viscous contact damping ratio β (0: none)
   bool friction = true;        // false: frictionless scene, no shear history
   bool all_spheres = false;    // every body is one ball and ball k is body k
   // > 0: the ball–ball contacts go through the SIMD sphere kernel of that many lanes
-  // (sphere_kernel.hpp): a scene of spheres only (all_spheres), without dashpots,
+  // (sphere_kernel.hpp): a scene of spheres only (all_spheres), of the linear law
+  // (the kernel's; any other law ignores this), without dashpots,
   // whose flat live list (ContactList::make_flat_live) is current. Simulation::step
   // decides and keeps the list current; the kernel gives the scalar pass's bits.
   int sphere_kernel_lanes = 0;

@@ -3,11 +3,15 @@
 
 namespace ballast {
 
-// Linear-model properties of one entity (ball material or wall), PFC3D style.
+// What an entity (ball material or wall) brings to a contact. Each contact law reads
+// the members its LawParameter table names (contact_law.hpp) and ignores the others,
+// so one Material serves every law a scene may choose.
 struct Material {
-  double kn = 0.0;  // normal stiffness of the entity, N/m
-  double ks = 0.0;  // shear stiffness of the entity, N/m
-  double mu = 0.0;  // Coulomb friction coefficient, dimensionless
+  double kn = 0.0;             // linear law: normal stiffness of the entity, N/m
+  double ks = 0.0;             // linear law: shear stiffness of the entity, N/m
+  double mu = 0.0;             // Coulomb friction coefficient, every law
+  double young_modulus = 0.0;  // Hertz–Mindlin: E, Pa
+  double poisson_ratio = 0.0;  // Hertz–Mindlin: ν
 };
 
 // PFC's linear contact model puts the two entities' springs in series:

@@ -7,7 +7,7 @@
 #include <ostream>
 #include <sstream>
 
-#include "engine/contact_law.hpp"
+#include "engine/contact_laws.hpp"
 #include "engine/errors.hpp"
 #include "engine/forces.hpp"
 #include "engine/integrator.hpp"
@@ -28,23 +28,23 @@ std::string vec_str(const Vec3& v) {
   return s.str();
 }
 
-void validate_material(const Material& m, Index id) {
+void validate_material(const Material& m, Index id, int law) {
   const std::string f = "material " + std::to_string(id) + " ";
-  require_setup(m.kn > 0.0 && std::isfinite(m.kn), f + "kn", m.kn, "> 0 N/m");
-  require_setup(m.ks >= 0.0 && std::isfinite(m.ks), f + "ks", m.ks, ">= 0 N/m");
+  check_law_parameters(law, m, f);
   require_setup(m.mu >= 0.0 && std::isfinite(m.mu), f + "mu", m.mu, ">= 0");
 }
 
 }  // namespace
 
-Simulation::Simulation(const SimulationSettings& settings) : settings_(settings) {
+Simulation::Simulation(const SimulationSettings& settings)
+    : settings_(settings), law_(contact_law_index(settings.contact_law)) {
   require_setup((settings_.domain_hi - settings_.domain_lo).minCoeff() > 0.0,
                 "domain extent (hi - lo, smallest)",
                 (settings_.domain_hi - settings_.domain_lo).minCoeff(), "> 0 m");
 }
 
 Index Simulation::add_material(const Material& m) {
-  validate_material(m, static_cast<Index>(materials_.size()));
+  validate_material(m, static_cast<Index>(materials_.size()), law_);
   materials_.push_back(m);
   refresh_friction_state();
   return static_cast<Index>(materials_.size()) - 1;
@@ -95,7 +95,7 @@ Index Simulation::add_clump(const Vec3& x, const Quat& orientation, std::span<co
 }
 
 Index Simulation::add_wall(const Wall& w) {
-  validate_wall(w);
+  validate_wall(w, law_);
   walls_.push_back(w);
   wall_force_.push_back(Vec3::Zero());
   wall_last_move_.push_back(Vec3::Zero());
@@ -291,8 +291,8 @@ void Simulation::refresh_friction_state() {
 
 void Simulation::validate() const {
   for (Index m = 0; m < static_cast<Index>(materials_.size()); ++m)
-    validate_material(materials_[m], m);
-  for (const Wall& w : walls_) validate_wall(w);
+    validate_material(materials_[m], m, law_);
+  for (const Wall& w : walls_) validate_wall(w, law_);
   for (const Servo& s : servos_) validate_servo(s, static_cast<Index>(walls_.size()));
   const auto& s = settings_;
   require_setup(s.local_damping >= 0.0 && s.local_damping < 1.0, "local_damping", s.local_damping,
@@ -310,13 +310,7 @@ void Simulation::validate() const {
                     (sphere_kernel_supported(4) ? ", 4" : "") +
                     (sphere_kernel_supported(8) ? ", 8" : "") + " on this CPU");
   require_setup(s.gravity.allFinite(), "gravity", vec_str(s.gravity), "finite");
-  std::string models;
-  bool known = false;
-  for (const ContactModelInfo& m : kContactModels) {
-    models += (models.empty() ? "" : ", ") + std::string(m.name);
-    known = known || m.name == s.contact_model;
-  }
-  require_setup(known, "contact_model", "'" + s.contact_model + "'", models);
+  require_setup(law_ >= 0, "contact_law", "'" + s.contact_law + "'", contact_law_names());
 }
 
 void Simulation::prepare() {
@@ -354,7 +348,8 @@ void Simulation::prepare() {
 
 void Simulation::update_timestep() {
   estimate_ = estimate_critical_timestep(balls_, bodies_, materials_, walls_, ball_contacts_,
-                                         wall_contacts_, settings_.damping_ratio);
+                                         wall_contacts_, settings_.damping_ratio, law_,
+                                         settings_.max_speed);
   dt_ = settings_.fixed_dt ? *settings_.fixed_dt : settings_.dt_safety * estimate_.critical;
 }
 
@@ -399,7 +394,7 @@ void Simulation::run(long steps) {
 
 EnergyBudget Simulation::energy() const {
   return energy_budget(balls_, bodies_, materials_, walls_, ball_contacts_, wall_contacts_,
-                       wall_work_);
+                       wall_work_, law_);
 }
 
 ContactStats Simulation::contacts() const {

@@ -40,10 +40,10 @@ struct SimulationSettings {
   double damping_ratio = 0.0;            // viscous contact damping ratio β; 0: none
   std::optional<double> fixed_dt;        // s; unset: automatic = dt_safety × critical
   double dt_safety = 0.8;
-  bool strict_timestep = false;          // a fixed dt above critical is an error, not a warning
-  std::optional<double> skin;            // m; unset: 0.2 × mean ball radius
-  double max_speed = 100.0;              // m/s; a body faster than this means blow-up
-  std::string contact_model = "linear";  // a name from kContactModels (contact_law.hpp)
+  bool strict_timestep = false;        // a fixed dt above critical is an error, not a warning
+  std::optional<double> skin;          // m; unset: 0.2 × mean ball radius
+  double max_speed = 100.0;            // m/s; a body faster than this means blow-up
+  std::string contact_law = "linear";  // a name from ContactLaws (contact_laws.hpp)
   RotationIntegrator rotation = RotationIntegrator::kPfc;  // clumps: "pfc" or "full"
   // A scene of spheres only takes the force pass's and the integrator's sphere path
   // (same sums in the same order, so the same bits); false forces the general path,
@@ -186,6 +186,9 @@ class Simulation {
   void drive_walls();
   // Both, then the largest squared wall move since the last build (m²).
   double move_walls();
+  // Normal tangent stiffness of wall contact c (ball `ball` on wall w) at the normal
+  // force of the last force pass, N/m: what the servo divides by.
+  double wall_contact_stiffness(Index c, Index ball, Index w) const;
   bool scene_has_friction() const;
   void refresh_friction_state();
 
@@ -195,6 +198,7 @@ class Simulation {
   BodyStore bodies_;
   std::vector<Wall> walls_;
   std::vector<Servo> servos_;
+  int law_ = 0;      // settings_.contact_law's number in ContactLaws; -1: unknown (refused)
   PairTable pairs_;  // combined contact properties; rebuilt when pairs_stale_
   CellList cells_;
   ContactList ball_contacts_, wall_contacts_;

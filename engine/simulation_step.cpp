@@ -12,7 +12,7 @@
 #include <limits>
 #include <sstream>
 
-#include "engine/contact_law.hpp"
+#include "engine/contact_laws.hpp"
 #include "engine/errors.hpp"
 #include "engine/forces.hpp"
 #include "engine/integrator.hpp"
@@ -60,6 +60,15 @@ void Simulation::sum_wall_forces(std::vector<Vec3>& force) const {
   for (Index c = 0; c < wall_contacts_.size(); ++c) force[wall[c]] += wrench[c].force;
 }
 
+double Simulation::wall_contact_stiffness(Index c, Index ball, Index w) const {
+  const PairProperties& p = pairs_.wall(balls_.material[ball], w);
+  const double r = balls_.radius[ball];
+  return with_contact_law(law_, [&](auto law) {
+    using Law = decltype(law);
+    return Law::stiffness(p, r, Law::overlap_at(p, r, wall_contacts_.normal_force[c])).kn;
+  });
+}
+
 void Simulation::drive_walls() {
   for (Servo& s : servos_) {
     // The measured force answers a wall speed u with K·u·dt through the contacts'
@@ -76,8 +85,7 @@ void Simulation::drive_walls() {
       for (Index w : s.walls)
         if (wall_contacts_.b[c] == w) {
           const Index ball = wall_contacts_.a[c];
-          const double kn =
-              series_stiffness(materials_[balls_.material[ball]].kn, walls_[w].material.kn);
+          const double kn = wall_contact_stiffness(c, ball, w);
           stiffness += kn;
           if (beta > 0.0)
             dashpots += dashpot_coefficient(beta, bodies_.mass[balls_.body[ball]], kn);
@@ -163,7 +171,7 @@ void Simulation::do_step() {
   if (!prepared_) prepare();
   if (needs_rebuild_) rebuild_neighbours();
   if (pairs_stale_) {
-    pairs_.build(materials_, walls_);
+    pairs_.build(materials_, walls_, law_);
     pairs_stale_ = false;
   }
   const bool has_walls = !walls_.empty();
@@ -176,7 +184,10 @@ void Simulation::do_step() {
   // serially, whenever the live lists are remade (rare in a settled bed) or the
   // kernel comes into use; the side-b lists are then remade by the integrator.
   const int lanes = settings_.simd_lanes < 0 ? sphere_kernel_best_lanes() : settings_.simd_lanes;
-  const bool kernel = all_spheres_ && settings_.damping_ratio == 0.0 && lanes > 0;
+  // The kernel is the linear law's (LinearLaw::kSphereKernel); another law's sphere
+  // scene takes the scalar pass.
+  const bool law_kernel = with_contact_law(law_, [](auto l) { return decltype(l)::kSphereKernel; });
+  const bool kernel = all_spheres_ && law_kernel && settings_.damping_ratio == 0.0 && lanes > 0;
   kernel_lanes_ = kernel ? lanes : 0;
   const bool make_flat = kernel && (refresh_live || !ball_contacts_.flat_live_current);
   if (make_flat) {
@@ -191,18 +202,23 @@ void Simulation::do_step() {
   integrate_split_.prepare(threads);
   TimedSplit* const contact_split = threads > 1 ? &contact_split_ : nullptr;
   TimedSplit* const integrate_split = threads > 1 ? &integrate_split_ : nullptr;
-  const ForceSettings fs{dt_,          settings_.damping_ratio, friction_,
-                         all_spheres_, kernel ? lanes : 0,      refresh_live && !kernel,
-                         contact_split};
-  const IntegratorSettings is{dt_,
-                              settings_.local_damping,
-                              settings_.gravity,
-                              settings_.max_speed,
-                              settings_.rotation,
-                              all_spheres_,
-                              all_spheres_ ? lanes : 0,
-                              refresh_live || make_flat,
-                              integrate_split};
+  const ForceSettings fs{.dt = dt_,
+                         .law = law_,
+                         .damping_ratio = settings_.damping_ratio,
+                         .friction = friction_,
+                         .all_spheres = all_spheres_,
+                         .sphere_kernel_lanes = kernel ? lanes : 0,
+                         .refresh_live = refresh_live && !kernel,
+                         .split = contact_split};
+  const IntegratorSettings is{.dt = dt_,
+                              .local_damping = settings_.local_damping,
+                              .gravity = settings_.gravity,
+                              .max_speed = settings_.max_speed,
+                              .rotation = settings_.rotation,
+                              .all_spheres = all_spheres_,
+                              .sphere_kernel_lanes = all_spheres_ ? lanes : 0,
+                              .refresh_live = refresh_live || make_flat,
+                              .split = integrate_split};
   IntegrationReport r;
   // One parallel region per step and one barrier inside it: the force pass
   // (forces.hpp), then per body gather + integrate (integrator.hpp); the region's end

@@ -80,7 +80,7 @@ template <bool kFriction, bool kOneMaterial>
     ks = lanes(v.pair, pair, 3, 1);
     mu = lanes(v.pair, pair, 3, 2);
   }
-  // contact_law.hpp's linear_contact, lane by lane.
+  // law_linear.hpp's LinearLaw::force (spring_dashpot_contact), lane by lane.
   const vd fn = kn * overlap;
   L3 f = fn * normal;
   const vd zero = splat(0.0);

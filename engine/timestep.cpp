@@ -6,6 +6,8 @@
 #include <limits>
 #include <vector>
 
+#include "engine/contact_laws.hpp"
+
 namespace ballast {
 
 namespace {
@@ -20,9 +22,10 @@ struct Stiffness {
 
 // The body's contact stiffnesses, translational and rotational (about its centre),
 // from the candidates that touch now, at least one contact with an identical ball.
+template <class Law>
 Stiffness body_stiffness(Index body, const BallStore& balls, const BodyStore& bodies,
                          const std::vector<Material>& materials, const std::vector<Wall>& walls,
-                         const ContactList& bc, const ContactList& wc) {
+                         const ContactList& bc, const ContactList& wc, double max_speed) {
   const Vec3 x = bodies.position[body];
   Stiffness k, floor;
   const Index first = bodies.first_ball[body], last = first + bodies.ball_count[body];
@@ -33,7 +36,8 @@ Stiffness body_stiffness(Index body, const BallStore& balls, const BodyStore& bo
     // Floor: one contact with an identical ball, on the far side of this ball
     // along x (a sphere's normal force then has no lever arm, as it should).
     Stiffness one;
-    one.add(0.5 * m.kn, 0.5 * m.ks, (px - x) + r * Vec3::UnitX(), Vec3::UnitX());
+    const ContactStiffness kf = Law::floor_stiffness(m, r, bodies.mass[body], max_speed);
+    one.add(kf.kn, kf.ks, (px - x) + r * Vec3::UnitX(), Vec3::UnitX());
     floor.tran = std::max(floor.tran, one.tran);
     floor.rot = std::max(floor.rot, one.rot);
     const auto add_ball = [&](Index other) {
@@ -41,8 +45,10 @@ Stiffness body_stiffness(Index body, const BallStore& balls, const BodyStore& bo
       const double reach = r + balls.radius[other];
       if (d.squaredNorm() >= reach * reach) return;
       const Vec3 n = d.normalized();
-      const Material& mo = materials[balls.material[other]];
-      k.add(series_stiffness(m.kn, mo.kn), series_stiffness(m.ks, mo.ks), (px - x) - r * n, n);
+      const double ro = balls.radius[other];
+      const ContactStiffness kc = Law::stiffness(Law::mix(m, materials[balls.material[other]]),
+                                                 r * ro / (r + ro), reach - d.norm());
+      k.add(kc.kn, kc.ks, (px - x) - r * n, n);
     };
     for (Index c = bc.a_first[ball]; c < bc.a_first[ball + 1]; ++c) add_ball(bc.b[c]);
     for (Index e = bc.b_first[ball]; e < bc.b_first[ball + 1]; ++e) add_ball(bc.a[bc.b_contact[e]]);
@@ -50,8 +56,8 @@ Stiffness body_stiffness(Index body, const BallStore& balls, const BodyStore& bo
       const Wall& w = walls[wc.b[c]];
       const WallTouch t = touch_wall(w, px, r);
       if (t.overlap <= 0.0) continue;
-      k.add(series_stiffness(m.kn, w.material.kn), series_stiffness(m.ks, w.material.ks),
-            t.point - x, t.normal);
+      const ContactStiffness kc = Law::stiffness(Law::mix(m, w.material), r, t.overlap);
+      k.add(kc.kn, kc.ks, t.point - x, t.normal);
     }
   }
   k.tran = std::max(k.tran, floor.tran);
@@ -64,7 +70,8 @@ Stiffness body_stiffness(Index body, const BallStore& balls, const BodyStore& bo
 TimestepEstimate estimate_critical_timestep(const BallStore& balls, const BodyStore& bodies,
                                             const std::vector<Material>& materials,
                                             const std::vector<Wall>& walls, const ContactList& bc,
-                                            const ContactList& wc, double damping_ratio) {
+                                            const ContactList& wc, double damping_ratio, int law,
+                                            double max_speed) {
   // Every 100 steps (Simulation::kTimestepRefreshSteps), over every candidate: serial,
   // it kept the other threads waiting (about 1 % of a smoke-scale Sample 1 box test's
   // samples on two threads, docs/PERFORMANCE.md). Each thread keeps the first
@@ -81,7 +88,10 @@ TimestepEstimate estimate_critical_timestep(const BallStore& balls, const BodySt
     best.critical = std::numeric_limits<double>::infinity();
 #pragma omp for schedule(static) nowait
     for (Index body = 0; body < nb; ++body) {
-      const Stiffness k = body_stiffness(body, balls, bodies, materials, walls, bc, wc);
+      const Stiffness k = with_contact_law(law, [&](auto l) {
+        return body_stiffness<decltype(l)>(body, balls, bodies, materials, walls, bc, wc,
+                                           max_speed);
+      });
       // Translation and rotation are coupled through the shear springs (a sphere's
       // tangential contact mode has 1/m_eff = 1/m + r²/I), so the frequencies add:
       // ω² = k_tran/m + k_rot/I_min. PFC takes min(t_tran, t_rot) instead; that let

@@ -2,11 +2,13 @@
 //     dt_body = 1 / sqrt(k_tran/m + k_rot/I_min)
 // with k_tran = Σ (kn + ks) over the body's touching contacts and
 // k_rot = Σ (kn·|r×n|² + ks·|r|²), r the lever arm from the centre of mass to the
-// contact point. A body can always gain a contact within one step, so both sums are
-// floored at one contact with a ball like its own (the ball's kn, ks in series with
-// themselves). dt_critical is the smallest over all bodies, reduced further when
-// contact dashpots are on. Leapfrog on a single spring is stable up to 2·sqrt(m/k),
-// so the estimate keeps a margin for contacts acting together, like PFC's.
+// contact point, kn and ks the contact law's tangent stiffnesses at the contact's
+// overlap (contact_law.hpp). A body can always gain a contact within one step, so
+// both sums are floored at one contact with a ball like its own (the law's
+// floor_stiffness: for the linear law the ball's kn, ks in series with themselves). dt_critical is
+// the smallest over all bodies, reduced further when contact dashpots are on. Leapfrog on a single
+// spring is stable up to 2·sqrt(m/k), so the estimate keeps a margin for contacts acting together,
+// like PFC's.
 #pragma once
 
 #include <vector>
@@ -19,6 +21,9 @@
 
 namespace ballast {
 
+// law: the contact law's number in ContactLaws (contact_laws.hpp); max_speed (m/s):
+// the fastest a body may move, which sets the floor of a law whose stiffness grows
+// with the overlap.
 struct TimestepEstimate {
   double critical = 0.0;  // s
   Index limiting_body = kNoIndex;
@@ -29,6 +34,7 @@ TimestepEstimate estimate_critical_timestep(const BallStore& balls, const BodySt
                                             const std::vector<Material>& materials,
                                             const std::vector<Wall>& walls,
                                             const ContactList& ball_contacts,
-                                            const ContactList& wall_contacts, double damping_ratio);
+                                            const ContactList& wall_contacts, double damping_ratio,
+                                            int law, double max_speed);
 
 }  // namespace ballast

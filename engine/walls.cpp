@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "engine/contact_laws.hpp"
 #include "engine/errors.hpp"
 #include "engine/ordered_pairs.hpp"
 
@@ -78,12 +79,9 @@ std::vector<Wall> box_container(const Vec3& lo, const Vec3& hi, const Material& 
   return walls;
 }
 
-void validate_wall(const Wall& w) {
+void validate_wall(const Wall& w, int law) {
   const std::string f = "wall '" + w.name + "' ";
-  require_setup(w.material.kn > 0.0 && std::isfinite(w.material.kn), f + "kn", w.material.kn,
-                "> 0 N/m");
-  require_setup(w.material.ks >= 0.0 && std::isfinite(w.material.ks), f + "ks", w.material.ks,
-                ">= 0 N/m");
+  check_law_parameters(law, w.material, f);
   require_setup(w.material.mu >= 0.0 && std::isfinite(w.material.mu), f + "mu", w.material.mu,
                 ">= 0");
   if (w.shape == WallShape::Plane) {

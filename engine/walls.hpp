@@ -60,6 +60,8 @@ void advance_wall(Wall& w, double dt);
 std::vector<Wall> box_container(const Vec3& lo, const Vec3& hi, const Material& sides,
                                 const Material& base, bool open_top);
 
-void validate_wall(const Wall& w);
+// Refuses a wall whose geometry or material (the parameters contact law number
+// `law` reads, contact_laws.hpp) is out of range.
+void validate_wall(const Wall& w, int law);
 
 }  // namespace ballast

@@ -1,12 +1,12 @@
 // The linear contact law's shear history as the contact plane turns
-// (engine/contact_law.hpp): the stored shear force is projected into the new plane
-// and rescaled to its old magnitude, except where the rescale factor rounds to 1 in
+// (engine/contact_law.hpp, spring_dashpot_contact): the stored shear force is projected into the
+// new plane and rescaled to its old magnitude, except where the rescale factor rounds to 1 in
 // double precision, where it is skipped. Closed-form checks, no scene.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "engine/contact_law.hpp"
+#include "engine/law_linear.hpp"
 
 namespace ballast {
 namespace {
@@ -23,11 +23,10 @@ Turned turn_contact(double angle, double shear) {
   c.overlap = 1e-6;  // m: a normal force of 5 N at kn = 5e6 N/m
   c.normal = {std::sin(angle), 0.0, std::cos(angle)};
   c.vrel = {0.0, 0.0, 0.0};
-  c.kn = c.ks = 5e6;
-  c.mu = 1e6;  // no Coulomb cap: only the rotation acts on the shear force
   c.dt = 1e-6;
-  V3 f{shear, 0.0, 0.0};  // tangential to the old normal (0, 0, 1)
-  linear_contact<true, false>(c, f);
+  const PairProperties p{5e6, 5e6, 1e6};  // mu = 1e6: no Coulomb cap, only the rotation acts
+  V3 f{shear, 0.0, 0.0};                  // tangential to the old normal (0, 0, 1)
+  LinearLaw::force<true, false>(c, p, f);
   return {f, c.normal};
 }
 

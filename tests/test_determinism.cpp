@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "cases/bed.hpp"
+#include "engine/contact_laws.hpp"
 #include "engine/state_hash.hpp"
 #include "settling_clump_bed.hpp"
 #include "test_helpers.hpp"
@@ -163,6 +164,22 @@ TEST(Determinism, ClumpBedGivesOneHashWithAnySharesOnOneToFourThreads) {
   o.stiffness *= kSoftening;
   o.gravity = kGravity;
   expect_one_hash_on_every_team(o, 0.025, o.count);  // more than one contact per clump
+}
+
+// Every other contact law of the registry (engine/contact_laws.hpp): a sphere bed
+// without dashpots, which the linear law sends through the SIMD kernel and the
+// others through the scalar pass, and a clump bed with them.
+TEST(Determinism, EveryContactLawGivesOneHashWithAnySharesOnOneToFourThreads) {
+  for (int law = 1; law < kContactLawCount; ++law) {
+    SCOPED_TRACE(std::string(contact_law_name(law)));
+    BedOptions spheres = sphere_bed(0.0);
+    spheres.contact_law = std::string(contact_law_name(law));
+    expect_one_hash_on_every_team(spheres, 0.03, 300);
+    BedOptions clumps = settling_clump_bed_options();
+    clumps.contact_law = spheres.contact_law;
+    clumps.gravity = kGravity;
+    expect_one_hash_on_every_team(clumps, 0.025, clumps.count);
+  }
 }
 
 // The sphere-only scene's fast path (forces.cpp, integrator.cpp) leaves out reads and

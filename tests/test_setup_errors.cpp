@@ -47,11 +47,11 @@ TEST(SetupErrors, RadiusDensityMaterialAndWalls) {
 
 TEST(SetupErrors, UnknownContactModelListsTheRegisteredOnes) {
   SimulationSettings s = scenes::bare_settings();
-  s.contact_model = "hertz";
+  s.contact_law = "hertz";
   Simulation sim(s);
   const Index mat = sim.add_material({1e6, 1e6, 0.3});
   sim.add_sphere(Vec3::Zero(), 0.01, 2600, mat);
-  expect_error([&] { sim.prepare(); }, {"contact_model", "'hertz'", "linear"});
+  expect_error([&] { sim.prepare(); }, {"contact_law", "'hertz'", "linear, hertz_mindlin"});
 }
 
 TEST(SetupErrors, BlowUpNamesStepBodyAndQuantityAndKeepsTheState) {

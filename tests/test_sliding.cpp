@@ -76,12 +76,15 @@ TEST(Sliding, TwoMaterialsSlipAtTheSmallerFriction) {
     EXPECT_NEAR(slowed, 0.3 * kG * 0.05, 0.01 * 0.3 * kG * 0.05)
         << "ball mu " << mu_ball << " on wall mu " << mu_wall;
   }
-  // Ball on ball: the pair table the force loop reads holds the same rule.
+  // Ball on ball: the pair table the force loop reads holds the same rule, every law.
   PairTable pairs;
-  pairs.build({Material{1e7, 1e7, 0.6}, Material{1e7, 1e7, 0.3}}, {});
-  EXPECT_EQ(pairs.balls(0, 1).mu, 0.3);
-  EXPECT_EQ(pairs.balls(1, 0).mu, 0.3);
-  EXPECT_EQ(pairs.balls(0, 0).mu, 0.6);
+  for (int law = 0; law < kContactLawCount; ++law) {
+    pairs.build({Material{1e7, 1e7, 0.6, 5e10, 0.25}, Material{1e7, 1e7, 0.3, 5e10, 0.25}}, {},
+                law);
+    EXPECT_EQ(pairs.balls(0, 1).mu, 0.3) << contact_law_name(law);
+    EXPECT_EQ(pairs.balls(1, 0).mu, 0.3) << contact_law_name(law);
+    EXPECT_EQ(pairs.balls(0, 0).mu, 0.6) << contact_law_name(law);
+  }
 }
 
 // PFC drops a contact's shear force when the contact breaks. A neighbour rebuild

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "engine/contact_laws.hpp"
 #include "engine/errors.hpp"
 #include "engine/timestep.hpp"
 #include "settling_clump_bed.hpp"
@@ -86,7 +87,9 @@ namespace {
 TimestepEstimate estimate_on(const Simulation& sim, int threads) {
   test_support::ScopedThreads team(threads);
   return estimate_critical_timestep(sim.balls(), sim.bodies(), sim.materials(), sim.walls(),
-                                    sim.ball_contacts(), sim.wall_contacts(), 0.1);
+                                    sim.ball_contacts(), sim.wall_contacts(), 0.1,
+                                    contact_law_index(sim.settings().contact_law),
+                                    sim.settings().max_speed);
 }
 
 }  // namespace
