@@ -70,7 +70,7 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, s
   sleeper.shape = WallShape::Box;
   sleeper.lo = Vec3(x0, -0.05 * s.width, top + 1e-3);
   sleeper.hi = Vec3(x1, 1.05 * s.width, top + 1e-3 + s.sleeper_height);
-  sleeper.material = {s.wall_stiffness, s.wall_stiffness, s.friction_loading};
+  sleeper.material = box_test::with_friction(s.wall, s.friction_loading);
   const Index wall = sim.add_wall(sleeper);
   Servo servo;
   servo.walls = {wall};

@@ -49,13 +49,14 @@ SimulationSettings settings_for(const BoxTestScene& s, double bound) {
   st.fixed_dt = s.fixed_dt;
   st.rotation = s.rotation;
   st.adaptive_rebuild = s.adaptive_rebuild;
+  st.contact_law = s.contact_law;
   return st;
 }
 
 // The box's walls, with a lid (the last wall) at `lid` m while particles grow.
 void add_walls(Simulation& sim, const BoxTestScene& s, double lid, double mu) {
-  const Material sides{s.wall_stiffness, s.wall_stiffness, mu};
-  const Material base{s.base_stiffness, s.base_stiffness, mu};
+  const Material sides = box_test::with_friction(s.wall, mu);
+  const Material base = box_test::with_friction(s.base, mu);
   for (const Wall& w : box_container(Vec3::Zero(), Vec3(s.length, s.width, lid), sides, base,
                                      /*open_top=*/false))
     sim.add_wall(w);
@@ -304,7 +305,7 @@ PreparedBed generate_sample(const BoxTestScene& s, std::ostream* log) {
     // Frictionless while growing; friction comes with compaction.
     Simulation& sim = out.sim;
     sim.set_damping_ratio(kGrowthDampingRatio);
-    const Index mat = sim.add_material({s.ball_stiffness, s.ball_stiffness, 0.0});
+    const Index mat = sim.add_material(box_test::with_friction(s.ball, 0.0));
     add_walls(sim, s, fill, 0.0);
     for (const Vec3& p : centres) sim.add_sphere(p, r, s.density, mat);
     out.stages.push_back(grow(sim, "expand", shrink, s.expansion_speed, log));
@@ -318,7 +319,7 @@ PreparedBed generate_sample(const BoxTestScene& s, std::ostream* log) {
     const ClumpParams& p = *s.clumps;
     const double bound = r * p.virtual_sphere_factor;
     Simulation sim(settings_for(s, bound));
-    const Index mat = sim.add_material({s.ball_stiffness, s.ball_stiffness, 0.0});
+    const Index mat = sim.add_material(box_test::with_friction(s.ball, 0.0));
     add_walls(sim, s, fill, 0.0);
     sim.set_damping_ratio(kGrowthDampingRatio);
     std::mt19937_64 rng(s.seed ^ 0x5851f42d4c957f2dull);
@@ -365,9 +366,9 @@ PreparedBed import_sample(const BoxTestScene& s, std::ostream* log) {
   const PackingMass mass{{s.mass_mode, s.density, s.mass_accuracy}, s.diameter};
   PreparedBed out{Simulation(settings_for(s, packing_body_size(packing))), {}, 0.0, {}};
   Simulation& sim = out.sim;
-  const Index mat = sim.add_material({s.ball_stiffness, s.ball_stiffness, 0.0});
-  const Material sides{s.wall_stiffness, s.wall_stiffness, 0.0};
-  const Material base{s.base_stiffness, s.base_stiffness, 0.0};
+  const Index mat = sim.add_material(box_test::with_friction(s.ball, 0.0));
+  const Material sides = box_test::with_friction(s.wall, 0.0);
+  const Material base = box_test::with_friction(s.base, 0.0);
   // A lid just above the bed's top, where a levelling plate is asked for (it is
   // lifted off otherwise, as a generated sample's).
   double top = 0.0;

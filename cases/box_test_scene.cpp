@@ -7,6 +7,7 @@
 
 #include "cases/clump_presets.hpp"
 #include "cases/json_fields.hpp"
+#include "engine/contact_laws.hpp"
 
 namespace ballast {
 
@@ -25,6 +26,27 @@ void refuse_with_file(const nlohmann::json& object, const char* key, const std::
                    "mass_accuracy, and diameter for mass_mode \"paper\"; the file gives the "
                    "particles, and stages 1-2 of the preparation, which " +
                    key + " would shape, are skipped)");
+}
+
+// /materials/contact_law and what each entity brings to a contact: for each of the
+// ball, the walls and the base, <entity>_stiffness (kn = ks, the paper's way) and
+// <entity>_<parameter> for every parameter of every law (ball_kn, ball_young_modulus,
+// ...), so that a study may switch the law without rewriting the materials.
+void read_contact_materials(JsonFields& m, BoxTestScene& s) {
+  m.text("contact_law", s.contact_law, "one of: " + contact_law_names(),
+         [](const std::string& v) { return contact_law_index(v) >= 0; });
+  const std::pair<const char*, Material*> entities[] = {
+      {"ball", &s.ball}, {"wall", &s.wall}, {"base", &s.base}};
+  for (const auto& [entity, material] : entities) {
+    const std::string prefix = std::string(entity) + "_";
+    double k = 0.0;
+    if (m.number((prefix + "stiffness").c_str(), k, "> 0 N/m", positive))
+      material->kn = material->ks = k;
+    for (int law = 0; law < kContactLawCount; ++law)
+      for (const LawParameter& p : law_parameters(law))
+        m.number((prefix + std::string(p.name)).c_str(), material->*p.member,
+                 std::string(p.allowed), [&](double v) { return p.allows(v); });
+  }
 }
 
 void read_particles(const nlohmann::json& j, BoxTestScene& s, const std::string& scene_dir) {
@@ -125,9 +147,7 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& j, const std::string& sc
   box.finish();
 
   JsonFields m(top.object("materials"), "/materials");
-  m.number("ball_stiffness", s.ball_stiffness, "> 0 N/m", positive);
-  m.number("wall_stiffness", s.wall_stiffness, "> 0 N/m", positive);
-  m.number("base_stiffness", s.base_stiffness, "> 0 N/m", positive);
+  read_contact_materials(m, s);
   m.number("density", s.density, "> 0 kg/m^3", positive);
   const auto mu = [](double v) { return v >= 0.0 && v <= 10.0; };
   m.number("friction_compaction", s.friction_compaction, "in [0, 10]", mu);

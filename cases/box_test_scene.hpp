@@ -31,11 +31,14 @@ struct BoxTestScene {
   double mass_accuracy = 0.005;           // uniform mode only
   // box, m
   double length = box_test::kLength, width = box_test::kWidth, height = box_test::kHeight;
-  // materials: kn = ks per entity, combined in series at contacts
-  double ball_stiffness = box_test::kBallStiffness;    // N/m
-  double wall_stiffness = box_test::kBallStiffness;    // N/m, side walls and sleeper
-  double base_stiffness = box_test::kRubberStiffness;  // N/m, rubber base
-  double density = box_test::kDensity;                 // kg/m³
+  // materials: the contact law (engine/contact_laws.hpp) and what each entity brings
+  // to a contact; each law reads its own members (engine/material.hpp). Friction is
+  // set per stage from the two coefficients below, not from these.
+  std::string contact_law = "linear";
+  Material ball = box_test::ballast_material(0.0);
+  Material wall = box_test::wall_material(0.0);  // side walls and sleeper
+  Material base = box_test::rubber_base(0.0);    // rubber base
+  double density = box_test::kDensity;           // kg/m³
   double friction_compaction = box_test::kFrictionCompaction;
   double friction_loading = box_test::kFrictionLoading;
   // numerics

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "engine/contact_laws.hpp"
 #include "study/study_error.hpp"
 
 namespace ballast {
@@ -71,6 +72,8 @@ constexpr StudyKey kStudyKeys[] = {
          "clump rotation: gyroscopic term dropped as PFC3D 3.x does (eq 17, [W] = 0) or kept"),
     text("mass_mode", "sum|paper|uniform", "numerics", "clump mass properties (docs/CLUMPS.md)"),
     number("local_damping", closed_open(0, 1), "numerics", "PFC local damping coefficient"),
+    {"contact_law", KeyKind::kLaw, kAny, "", "numerics", "",
+     "the contact law: PFC's linear springs or Hertz–Mindlin (docs/BOX_TEST.md)"},
     integer("count", at_least(1), "sample",
             "particles: spheres, or clumps replacing them one for one (the paper's 1,936 "
             "spheres, 1,770 Sample 1 and 1,995 Sample 2 clumps)"),
@@ -108,9 +111,15 @@ std::string either(const std::vector<std::string>& items) {
 }
 
 std::string range_text(const KeyRange& r) {
-  if (r.hi == kInf) return (r.lo_open ? "> " : ">= ") + format_bound(r.lo);
-  return std::string(r.lo_open ? "(" : "[") + format_bound(r.lo) + ", " + format_bound(r.hi) +
-         (r.hi_open ? ")" : "]");
+  // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on the
+  // chain of operator+ that builds the same string.
+  std::string text = r.hi == kInf ? (r.lo_open ? "> " : ">= ") : (r.lo_open ? "(" : "[");
+  text += format_bound(r.lo);
+  if (r.hi == kInf) return text;
+  text += ", ";
+  text += format_bound(r.hi);
+  text += r.hi_open ? ")" : "]";
+  return text;
 }
 
 bool in_range(const KeyRange& r, double x) {
@@ -149,6 +158,12 @@ std::string allowed_values(const StudyKey& key, const std::vector<std::string>& 
     case KeyKind::kText: {
       std::vector<std::string> quoted;
       for (const std::string& c : split_choices(key.choices)) quoted.push_back('"' + c + '"');
+      return either(quoted);
+    }
+    case KeyKind::kLaw: {
+      std::vector<std::string> quoted;
+      for (int law = 0; law < kContactLawCount; ++law)
+        quoted.push_back('"' + std::string(contact_law_name(law)) + '"');
       return either(quoted);
     }
     case KeyKind::kShape: {
@@ -196,6 +211,11 @@ nlohmann::json check_study_value(const StudyKey& key, const nlohmann::ordered_js
       if (std::find(c.begin(), c.end(), value.get<std::string>()) == c.end()) {
         reject("is not a known value");
       }
+      return value.get<std::string>();
+    }
+    case KeyKind::kLaw: {
+      if (!value.is_string()) reject("is not a string");
+      if (contact_law_index(value.get<std::string>()) < 0) reject("is not a known contact law");
       return value.get<std::string>();
     }
     case KeyKind::kShape: {

@@ -16,6 +16,7 @@ enum class KeyKind {
   kNumber,   // any JSON number; integers are stored as doubles
   kText,     // one of a fixed list of strings
   kShape,    // "spheres" or the name of a clump preset (cases/presets)
+  kLaw,      // the name of a contact law (engine/contact_laws.hpp)
 };
 
 // An interval of numbers; open ends exclude the bound, infinite ends are unbounded.

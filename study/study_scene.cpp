@@ -28,6 +28,7 @@ constexpr SceneKey kSceneKeys[] = {
     {"rotation", "/numerics/rotation"},
     {"mass_mode", "/particles/mass_mode"},
     {"local_damping", "/numerics/local_damping"},
+    {"contact_law", "/materials/contact_law"},
     {"count", "/particles/count"},
     {"levelling_pressure", "/preparation/levelling_pressure"},
     {"gravity_factor", "/preparation/gravity_factor"},

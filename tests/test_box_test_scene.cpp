@@ -27,8 +27,9 @@ TEST(BoxTestScene, DefaultsAreThePapers) {
   EXPECT_DOUBLE_EQ(s.length, 0.7);
   EXPECT_DOUBLE_EQ(s.width, 0.3);
   EXPECT_DOUBLE_EQ(s.height, 0.45);
-  EXPECT_DOUBLE_EQ(s.ball_stiffness, 5.08e9);
-  EXPECT_DOUBLE_EQ(s.base_stiffness, 2.54e6);
+  EXPECT_DOUBLE_EQ(s.ball.kn, 5.08e9);
+  EXPECT_DOUBLE_EQ(s.ball.ks, 5.08e9);
+  EXPECT_DOUBLE_EQ(s.base.kn, 2.54e6);
   EXPECT_DOUBLE_EQ(s.density, 2600.0);
   EXPECT_DOUBLE_EQ(s.friction_compaction, 0.3);
   EXPECT_DOUBLE_EQ(s.friction_loading, 0.5);

@@ -70,6 +70,22 @@ TEST(StudyScene, NumericsAndLoadingKeysLandOnTheirSceneKeys) {
   EXPECT_EQ(b.cycles, 3);
 }
 
+// The contact law as a study factor: the run's scene names it, and the box test's
+// materials carry both laws' parameters, so the base scene needs no other change.
+TEST(StudyScene, TheContactLawIsAFactorOfItsOwn) {
+  const StudySpec s = expand(R"({"axes": {"contact_law": ["linear", "hertz_mindlin"]}})");
+  ASSERT_EQ(s.runs.size(), 2u);
+  const BoxTestScene linear =
+      parse_run_scene(run_scene_json(kBase, s.runs[0]), s.runs[0], "t.json", "s.json");
+  const BoxTestScene hertz =
+      parse_run_scene(run_scene_json(kBase, s.runs[1]), s.runs[1], "t.json", "s.json");
+  EXPECT_EQ(linear.contact_law, "linear");
+  EXPECT_EQ(hertz.contact_law, "hertz_mindlin");
+  EXPECT_GT(hertz.ball.young_modulus, 0.0);
+  test_support::expect_error([] { expand(R"({"axes": {"contact_law": ["hertz"]}})"); },
+                             {"contact_law", "\"hertz\"", "\"linear\" or \"hertz_mindlin\""});
+}
+
 TEST(StudyScene, TheRunsSeedIsTheScenesSeedInFull64Bits) {
   RunSpec run;
   run.id = "r1";
