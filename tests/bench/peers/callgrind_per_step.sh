@@ -6,7 +6,7 @@
 # LAMMPS input it writes) and valgrind. One thread / one process; a few minutes.
 #
 #   tests/bench/peers/callgrind_per_step.sh [N1 N2]
-#   BALLAST=build/revisions/69f8a8c/build/study/ballast tests/bench/peers/callgrind_per_step.sh
+#   BALLAST=build/revisions/REV/build/study/ballast tests/bench/peers/callgrind_per_step.sh
 #     (another build of ours, e.g. one compare_revisions.py made)
 set -euo pipefail
 cd "$(dirname "$0")/../../.."

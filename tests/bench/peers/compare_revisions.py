@@ -2,7 +2,7 @@
 """Our engine at several git revisions on the same beds, to say which change bought what
 (docs/PERFORMANCE.md, "What bought what").
 
-    tests/bench/peers/compare_revisions.py 69f8a8c 0f66e10 HEAD
+    tests/bench/peers/compare_revisions.py REV_A REV_B HEAD
     tests/bench/peers/compare_revisions.py "HEAD:--simd-lanes 0" HEAD --beds-only spheres
 
 A revision may carry bench-bed flags after a colon ("REV:FLAGS"): one build, run

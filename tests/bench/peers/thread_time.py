@@ -3,7 +3,7 @@
 what": why the thread shares follow measured time, engine/timed_split.hpp).
 
     tests/bench/peers/thread_time.py [build/peers/spheres.txt] [--steps 20000]
-    BALLAST=build/revisions/d757b2d/build/study/ballast tests/bench/peers/thread_time.py
+    BALLAST=build/revisions/REV/build/study/ballast tests/bench/peers/thread_time.py
 
 Runs `ballast bench-bed` on 2 threads with the benchmark's physics under `perf record`
 (cpu-clock sampling: this VM exposes no hardware counters) and prints, per thread, the
