@@ -5,6 +5,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "cases/clump_overrides.hpp"
 #include "cases/clump_presets.hpp"
 #include "cases/json_fields.hpp"
 #include "engine/contact_laws.hpp"
@@ -89,23 +90,8 @@ void read_particles(const nlohmann::json& j, BoxTestScene& s, const std::string&
   }
   ClumpParams p = load_clump_preset(s.shape).params;
   JsonFields c(clump, "/particles/clump");
-  const auto whole = [](long v) { return v >= 0; };
-  long directions = p.directions, balls = p.balls_per_direction, edges = p.edge_balls;
-  c.integer("directions", directions, "6 or 14", [](long v) { return v == 6 || v == 14; });
-  c.number("p", p.p, "in [0, 1]", fraction);
-  c.integer("balls_per_direction", balls, ">= 0", whole);
-  c.number("c", p.c, "in [0, 1)", [](double v) { return v >= 0.0 && v < 1.0; });
-  c.number("d3", p.d3, ">= 0", [](double v) { return v >= 0.0; });
-  c.integer("edge_balls", edges, ">= 0", whole);
-  c.number("virtual_sphere_factor", p.virtual_sphere_factor, "> 0", positive);
-  std::string adjacency = adjacency_name(p.adjacency);
-  c.text("adjacency", adjacency, "\"hull\" or \"face_to_diagonal\"",
-         [](const std::string& v) { return v == "hull" || v == "face_to_diagonal"; });
+  read_clump_overrides(c, p);
   c.finish();
-  p.directions = static_cast<int>(directions);
-  p.balls_per_direction = static_cast<int>(balls);
-  p.edge_balls = static_cast<int>(edges);
-  p.adjacency = parse_adjacency(adjacency);
   p.nominal_diameter = s.diameter;
   s.clumps = p;
 }

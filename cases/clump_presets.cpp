@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "engine/clump_mass.hpp"
+#include "engine/clump_param_table.hpp"
 #include "engine/errors.hpp"
 
 namespace ballast {
@@ -110,25 +111,21 @@ ClumpPreset parse_clump_preset(std::string_view json_text, const std::string& or
   }
   if (!j.is_object()) fail(origin, "expected a JSON object of clump parameters");
 
-  static const char* const kRequired[] = {
-      "directions", "c", "d3", "p", "edge_balls", "balls_per_direction", "virtual_sphere_factor"};
-  static const char* const kOptional[] = {"adjacency", "nominal_diameter", "min_radius_fraction",
-                                          "density", "paper"};
-  for (const char* key : kRequired) {
-    if (!j.contains(key)) fail(origin, std::string("missing field '") + key + "'");
+  // The clump parameters come from the parameter table (engine/clump_param_table.hpp);
+  // besides them a file may give the density and the paper's counts.
+  static const char* const kExtra[] = {"density", "paper"};
+  for (const ClumpParamField& f : clump_param_fields()) {
+    if (f.required_in_presets && !j.contains(std::string(f.name)))
+      fail(origin, "missing field '" + std::string(f.name) + "'");
   }
   for (const auto& item : j.items()) {
     const std::string& key = item.key();  // a plain reference: lambdas may capture it
-    const bool known = is_documentation(key) ||
-                       std::any_of(std::begin(kRequired), std::end(kRequired),
-                                   [&](const char* k) { return key == k; }) ||
-                       std::any_of(std::begin(kOptional), std::end(kOptional),
-                                   [&](const char* k) { return key == k; });
+    const bool known =
+        is_documentation(key) || find_clump_param(key) != nullptr ||
+        std::any_of(std::begin(kExtra), std::end(kExtra), [&](const char* k) { return key == k; });
     if (!known) {
-      fail(origin, "unknown field '" + key +
-                       "' (known: directions, p, balls_per_direction, c, d3, edge_balls, "
-                       "virtual_sphere_factor, adjacency, nominal_diameter, "
-                       "min_radius_fraction, density, paper, and documentation fields "
+      fail(origin, "unknown field '" + key + "' (known: " + clump_param_names(false) +
+                       ", density, paper, and documentation fields "
                        "source, description, notes, *_source, *_note)");
     }
   }
@@ -137,18 +134,13 @@ ClumpPreset parse_clump_preset(std::string_view json_text, const std::string& or
   ClumpParams& q = p.params;
   if (j.contains("source")) p.source = text(j, "source", origin);
   if (j.contains("description")) p.description = text(j, "description", origin);
-  q.directions = integer(j, "directions", origin);
-  q.p = number(j, "p", origin);
-  q.balls_per_direction = integer(j, "balls_per_direction", origin);
-  q.c = number(j, "c", origin);
-  q.d3 = number(j, "d3", origin);
-  q.edge_balls = integer(j, "edge_balls", origin);
-  q.virtual_sphere_factor = number(j, "virtual_sphere_factor", origin);
   try {
-    if (j.contains("adjacency")) q.adjacency = parse_adjacency(text(j, "adjacency", origin));
-    if (j.contains("nominal_diameter")) q.nominal_diameter = number(j, "nominal_diameter", origin);
-    if (j.contains("min_radius_fraction")) {
-      q.min_radius_fraction = number(j, "min_radius_fraction", origin);
+    for (const ClumpParamField& f : clump_param_fields()) {
+      const std::string key(f.name);
+      if (!j.contains(key)) continue;
+      if (f.kind == ClumpParamKind::kInteger) f.set(q, integer(j, key.c_str(), origin));
+      if (f.kind == ClumpParamKind::kNumber) f.set(q, number(j, key.c_str(), origin));
+      if (f.kind == ClumpParamKind::kChoice) f.set_text(q, text(j, key.c_str(), origin));
     }
     if (j.contains("density")) p.density = number(j, "density", origin);
     validate_clump_params(q);

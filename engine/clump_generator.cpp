@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string>
 
+#include "engine/clump_param_table.hpp"
 #include "engine/errors.hpp"
 
 namespace ballast {
@@ -47,22 +48,11 @@ EdgeAdjacency parse_adjacency(std::string_view name) {
 }
 
 void validate_clump_params(const ClumpParams& q) {
-  if (q.directions != 6 && q.directions != 14) {
-    reject("directions", q.directions, "not allowed (6 cube-face normals or 14 with diagonals)");
-  }
-  if (!(q.p >= 0.0 && q.p <= 1.0)) reject("p", q.p, "outside [0, 1]");
-  if (q.balls_per_direction < 0) reject("balls_per_direction", q.balls_per_direction, "< 0");
-  if (!(q.c >= 0.0 && q.c < 1.0)) reject("c", q.c, "outside [0, 1) (fraction of R)");
-  if (!(q.d3 >= 0.0 && std::isfinite(q.d3))) reject("d3", q.d3, "not >= 0 (fraction of R)");
-  if (q.edge_balls < 0) reject("edge_balls", q.edge_balls, "< 0");
-  if (!(q.nominal_diameter > 0.0 && std::isfinite(q.nominal_diameter))) {
-    reject("nominal_diameter", q.nominal_diameter, "not > 0 (metres)");
-  }
-  if (!(q.virtual_sphere_factor > 0.0 && std::isfinite(q.virtual_sphere_factor))) {
-    reject("virtual_sphere_factor", q.virtual_sphere_factor, "not > 0");
-  }
-  if (!(q.min_radius_fraction > 0.0 && q.min_radius_fraction < 1.0)) {
-    reject("min_radius_fraction", q.min_radius_fraction, "outside (0, 1) (fraction of R)");
+  // Every range is the table's (clump_param_table.cpp); the adjacency, an enum, is
+  // valid by construction.
+  for (const ClumpParamField& f : clump_param_fields()) {
+    if (f.kind == ClumpParamKind::kChoice || f.allows(f.value(q))) continue;
+    reject(std::string(f.name).c_str(), f.value(q), "not allowed (allowed: " + f.allowed() + ")");
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "engine/clump_param_table.hpp"
 #include "study/hdf5_util.hpp"
 
 namespace ballast {
@@ -27,16 +28,13 @@ void write_clump_sample(hid_t file, const ClumpArchiveHeader& h,
   string_attribute(file, "mass_mode", mass_mode_name(h.mass.mode));
   number_attribute(file, "density", h.mass.density);
   number_attribute(file, "accuracy", h.mass.accuracy);
-  number_attribute(file, "directions", q.directions);
-  number_attribute(file, "p", q.p);
-  number_attribute(file, "balls_per_direction", q.balls_per_direction);
-  number_attribute(file, "c", q.c);
-  number_attribute(file, "d3", q.d3);
-  number_attribute(file, "edge_balls", q.edge_balls);
-  string_attribute(file, "adjacency", adjacency_name(q.adjacency));
-  number_attribute(file, "nominal_diameter", q.nominal_diameter);
-  number_attribute(file, "virtual_sphere_factor", q.virtual_sphere_factor);
-  number_attribute(file, "min_radius_fraction", q.min_radius_fraction);
+  for (const ClumpParamField& f : clump_param_fields()) {  // every parameter, by its name
+    const std::string name(f.name);
+    if (f.kind == ClumpParamKind::kInteger)
+      number_attribute(file, name.c_str(), static_cast<int>(f.value(q)));
+    if (f.kind == ClumpParamKind::kNumber) number_attribute(file, name.c_str(), f.value(q));
+    if (f.kind == ClumpParamKind::kChoice) string_attribute(file, name.c_str(), f.text(q));
+  }
   number_attribute(file, "central_radius", central_ball_radius(q));
   number_attribute(file, "virtual_radius", virtual_sphere_radius(q));
   number_attribute(file, "expected_balls_per_clump", expected_ball_count(q));

@@ -12,6 +12,7 @@
 
 #include "cases/clump_presets.hpp"
 #include "engine/clump_batch.hpp"
+#include "engine/clump_param_table.hpp"
 #include "engine/clump_shape.hpp"
 #include "study/clump_archive.hpp"
 #include "study/clump_vtk.hpp"
@@ -109,18 +110,16 @@ void run_clump_command(const ClumpCommandOptions& o) {
     nlohmann::ordered_json j;
     j["preset"] = preset.name;
     j["source"] = preset.source;
-    j["parameters"] = {{"directions", q.directions},
-                       {"p", q.p},
-                       {"balls_per_direction", q.balls_per_direction},
-                       {"c", q.c},
-                       {"d3", q.d3},
-                       {"edge_balls", q.edge_balls},
-                       {"adjacency", adjacency_name(q.adjacency)},
-                       {"nominal_diameter_m", q.nominal_diameter},
-                       {"virtual_sphere_factor", q.virtual_sphere_factor},
-                       {"min_radius_fraction", q.min_radius_fraction},
-                       {"central_radius_m", central_ball_radius(q)},
-                       {"virtual_radius_m", virtual_sphere_radius(q)}};
+    // Every parameter by its table name (lengths in metres carry "_m").
+    nlohmann::ordered_json& params = j["parameters"];
+    for (const ClumpParamField& f : clump_param_fields()) {
+      const std::string key = std::string(f.name) + (f.unit == "m" ? "_m" : "");
+      if (f.kind == ClumpParamKind::kInteger) params[key] = static_cast<int>(f.value(q));
+      if (f.kind == ClumpParamKind::kNumber) params[key] = f.value(q);
+      if (f.kind == ClumpParamKind::kChoice) params[key] = f.text(q);
+    }
+    params["central_radius_m"] = central_ball_radius(q);
+    params["virtual_radius_m"] = virtual_sphere_radius(q);
     j["mass"] = {{"mode", mass_mode_name(mass.mode)},
                  {"density_kg_m3", mass.density},
                  {"accuracy", mass.accuracy}};

@@ -4,7 +4,9 @@
 #include <climits>
 #include <cstdio>
 #include <limits>
+#include <vector>
 
+#include "engine/clump_param_table.hpp"
 #include "engine/contact_laws.hpp"
 #include "study/study_error.hpp"
 
@@ -44,26 +46,23 @@ constexpr StudyKey text(std::string_view name, std::string_view choices, std::st
   return {name, KeyKind::kText, kAny, choices, group, "", description};
 }
 
-// The registry. Clump parameters (group "clump") mean what they mean in ClumpParams
-// (engine/clump_generator.hpp) and are checked here against the same ranges as
-// validate_clump_params, so that a bad value is reported at its place in the file
-// rather than later, in the middle of a run.
-constexpr StudyKey kStudyKeys[] = {
-    {"shape", KeyKind::kShape, kAny, "", "shape", "",
-     "\"spheres\", or a clump preset whose fields the clump parameters below override"},
-    {"directions", KeyKind::kInteger, closed(6, 14), "6|14", "clump", "",
-     "candidate directions: 6 cube-face normals, 14 with the space diagonals"},
-    number("p", closed(0, 1), "clump", "probability that a candidate direction is used"),
+// The registry. Clump parameters (group "clump") come from the clump parameter table
+// (engine/clump_param_table.hpp), with its names, ranges and meanings, so that a bad
+// value is reported at its place in the file rather than later, in the middle of a
+// run; n (p = n / directions) follows p. The other keys are listed here.
+constexpr StudyKey kShapeKey = {
+    "shape",
+    KeyKind::kShape,
+    kAny,
+    "",
+    "shape",
+    "",
+    "\"spheres\", or a clump preset whose fields the clump parameters below override"};
+constexpr StudyKey kNKey =
     number("n", closed(0, 14), "clump",
            "expected number of used directions, p = n / directions (exclusive with p)",
-           "a number in [0, directions]"),
-    integer("balls_per_direction", at_least(0), "clump", "balls grown along a used direction"),
-    number("c", closed_open(0, 1), "clump", "largest radius reduction D4, fraction of R"),
-    number("d3", at_least(0), "clump", "clump extension D3 (eq 8), fraction of R"),
-    integer("edge_balls", at_least(0), "clump", "balls on each edge between adjacent directions"),
-    number("virtual_sphere_factor", above(0), "clump", "Rv / (nominal diameter / 2)"),
-    text("adjacency", "hull|face_to_diagonal", "clump",
-         "direction pairs joined by edge balls (docs/CLUMPS.md)"),
+           "a number in [0, directions]");
+constexpr StudyKey kOtherKeys[] = {
     number("dt_safety", open_closed(0, 1), "numerics", "timestep = dt_safety x critical"),
     number(
         "dt", above(0), "numerics",
@@ -79,25 +78,41 @@ constexpr StudyKey kStudyKeys[] = {
             "spheres, 1,770 Sample 1 and 1,995 Sample 2 clumps)"),
     number("levelling_pressure", closed(0, 1e6), "loading",
            "Pa, the levelling plate on the bed's top through compaction; 0: a free top"),
-    number("gravity_factor", at_least(1), "loading", "enhanced gravity while compacting, x g"),
+    number("gravity_factor", closed(1, 1000), "loading", "enhanced gravity while compacting, x g"),
     integer("cycles", at_least(1), "loading", "load cycles of the sleeper"),
 };
+
+StudyKey clump_key(const ClumpParamField& f) {
+  const KeyRange range{f.lo, f.hi, f.lo_open, f.hi_open};
+  switch (f.kind) {
+    case ClumpParamKind::kInteger:
+      return {f.name, KeyKind::kInteger, range, f.choices, "clump", "", f.description};
+    case ClumpParamKind::kNumber:
+      return {f.name, KeyKind::kNumber, range, "", "clump", "", f.description};
+    case ClumpParamKind::kChoice:
+      break;
+  }
+  return {f.name, KeyKind::kText, kAny, f.choices, "clump", "", f.description};
+}
+
+const std::vector<StudyKey>& all_keys() {
+  static const std::vector<StudyKey> keys = [] {
+    std::vector<StudyKey> k{kShapeKey};
+    for (const ClumpParamField& f : clump_param_fields()) {
+      if (!f.overridable) continue;
+      k.push_back(clump_key(f));
+      if (f.name == "p") k.push_back(kNKey);
+    }
+    k.insert(k.end(), std::begin(kOtherKeys), std::end(kOtherKeys));
+    return k;
+  }();
+  return keys;
+}
 
 std::string format_bound(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", x);
   return buf;
-}
-
-std::vector<std::string> split_choices(std::string_view choices) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  while (start <= choices.size()) {
-    const std::size_t bar = std::min(choices.find('|', start), choices.size());
-    out.emplace_back(choices.substr(start, bar - start));
-    start = bar + 1;
-  }
-  return out;
 }
 
 // "a", "a or b", "a, b or c".
@@ -131,11 +146,11 @@ bool in_range(const KeyRange& r, double x) {
 }  // namespace
 
 std::span<const StudyKey> study_keys() {
-  return kStudyKeys;
+  return all_keys();
 }
 
 const StudyKey* find_study_key(std::string_view name) {
-  for (const StudyKey& k : kStudyKeys) {
+  for (const StudyKey& k : all_keys()) {
     if (k.name == name) return &k;
   }
   return nullptr;
@@ -143,7 +158,7 @@ const StudyKey* find_study_key(std::string_view name) {
 
 std::string study_key_names() {
   std::string s;
-  for (const StudyKey& k : kStudyKeys) s += (s.empty() ? "" : ", ") + std::string(k.name);
+  for (const StudyKey& k : all_keys()) s += (s.empty() ? "" : ", ") + std::string(k.name);
   return s;
 }
 

@@ -1,6 +1,8 @@
-// The parameters a study may vary, in one table: each key's kind, the values it
-// accepts and what it means. A new key is one line in kStudyKeys (study_keys.cpp)
-// plus one row in docs/STUDY.md; the matrix expansion and its error messages follow.
+// The parameters a study may vary, in one registry: each key's kind, the values it
+// accepts and what it means. The clump parameters come from the clump parameter
+// table (engine/clump_param_table.hpp); any other key is one line in kOtherKeys
+// (study_keys.cpp), its scene key in study_scene.cpp, and one row in docs/STUDY.md;
+// the matrix expansion and its error messages follow.
 #pragma once
 
 #include <nlohmann/json.hpp>

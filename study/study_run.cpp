@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "cases/clump_overrides.hpp"
 #include "engine/clump_generator.hpp"
 #include "study/study_error.hpp"
 #include "study/study_keys.hpp"
@@ -94,20 +95,9 @@ std::optional<ClumpPreset> resolve_run_clump(const json& params) {
     preset = load_clump_preset(shape);
   }
   ClumpParams& q = preset.params;
-  if (params.contains("directions")) q.directions = params.at("directions").get<int>();
-  if (params.contains("p")) q.p = params.at("p").get<double>();
-  if (params.contains("balls_per_direction")) {
-    q.balls_per_direction = params.at("balls_per_direction").get<int>();
-  }
-  if (params.contains("c")) q.c = params.at("c").get<double>();
-  if (params.contains("d3")) q.d3 = params.at("d3").get<double>();
-  if (params.contains("edge_balls")) q.edge_balls = params.at("edge_balls").get<int>();
-  if (params.contains("virtual_sphere_factor")) {
-    q.virtual_sphere_factor = params.at("virtual_sphere_factor").get<double>();
-  }
-  if (params.contains("adjacency")) {
-    q.adjacency = parse_adjacency(params.at("adjacency").get<std::string>());
-  }
+  // The same route as a scene's /particles/clump (cases/clump_overrides.hpp); the
+  // values were checked against the same table when the matrix was read.
+  apply_clump_overrides(params, "/matrix", q);
   if (params.contains("n")) {
     const double n = params.at("n").get<double>();
     if (params.contains("p")) {

@@ -1,7 +1,10 @@
 #include "study/study_scene.hpp"
 
 #include <algorithm>
+#include <string>
+#include <vector>
 
+#include "engine/clump_param_table.hpp"
 #include "study/study_keys.hpp"
 #include "study/study_run.hpp"
 
@@ -10,19 +13,12 @@ namespace {
 
 using nlohmann::json;
 
-// Where each study key goes in a scene file. A key added to kStudyKeys needs a row
-// here (StudyScene.EveryStudyKeyHasASceneKey fails otherwise).
-constexpr SceneKey kSceneKeys[] = {
+// Where each study key goes in a scene file: a clump parameter under
+// /particles/clump, the others below. A key added to the study keys needs a row
+// (StudyScene.EveryStudyKeyHasASceneKey fails otherwise).
+constexpr SceneKey kOtherSceneKeys[] = {
     {"shape", "/particles/shape"},
-    {"directions", "/particles/clump/directions"},
-    {"p", "/particles/clump/p"},
     {"n", "/particles/clump/p"},  // as p = n / directions (resolve_run_clump)
-    {"balls_per_direction", "/particles/clump/balls_per_direction"},
-    {"c", "/particles/clump/c"},
-    {"d3", "/particles/clump/d3"},
-    {"edge_balls", "/particles/clump/edge_balls"},
-    {"virtual_sphere_factor", "/particles/clump/virtual_sphere_factor"},
-    {"adjacency", "/particles/clump/adjacency"},
     {"dt_safety", "/numerics/dt_safety"},
     {"dt", "/numerics/dt"},
     {"rotation", "/numerics/rotation"},
@@ -35,13 +31,36 @@ constexpr SceneKey kSceneKeys[] = {
     {"cycles", "/sleeper/cycles"},
 };
 
+// Every study key's row, in the study keys' order.
+const std::vector<SceneKey>& all_scene_keys() {
+  static const std::vector<std::string> clump_pointers = [] {
+    std::vector<std::string> p;
+    for (const ClumpParamField& f : clump_param_fields())
+      p.push_back("/particles/clump/" + std::string(f.name));
+    return p;
+  }();
+  static const std::vector<SceneKey> keys = [] {
+    std::vector<SceneKey> k;
+    for (const StudyKey& key : study_keys()) {
+      for (const SceneKey& other : kOtherSceneKeys)
+        if (other.study_key == key.name) k.push_back(other);
+      const auto fields = clump_param_fields();
+      for (std::size_t i = 0; i < fields.size(); ++i)
+        if (fields[i].overridable && fields[i].name == key.name)
+          k.push_back({fields[i].name, clump_pointers[i]});
+    }
+    return k;
+  }();
+  return keys;
+}
+
 // The preset a run's clump starts from when it gives clump parameters but no shape:
 // docs/STUDY.md says ClumpParams' defaults, which are Table 2 Sample 1's numbers
 // (StudyScene.DefaultClumpShapeIsClumpParamsDefaults pins that).
 constexpr const char* kDefaultClumpShape = "table2/sample1";
 
 const SceneKey& scene_key(const std::string& study_key) {
-  for (const SceneKey& k : kSceneKeys) {
+  for (const SceneKey& k : all_scene_keys()) {
     if (k.study_key == study_key) return k;
   }
   // expand_study admits only registered keys, and every one has a row (tested).
@@ -59,7 +78,7 @@ bool brings_clump(const json& params) {
 }  // namespace
 
 std::span<const SceneKey> scene_keys() {
-  return kSceneKeys;
+  return all_scene_keys();
 }
 
 json run_scene_json(const json& base_scene, const RunSpec& run) {

@@ -2,7 +2,8 @@
 // parameters written onto scene keys (docs/STUDY.md, "Running a study"), then read by
 // parse_box_test_scene so that the scene's own validation applies to every run.
 //
-// One table (kSceneKeys in study_scene.cpp) says where each study key goes:
+// Clump keys go to /particles/clump/<key>; one table (kOtherSceneKeys in
+// study_scene.cpp) says where each other study key goes:
 //
 //   shape             -> /particles/shape        dt_safety     -> /numerics/dt_safety
 //   directions, p, .. -> /particles/clump/<key>  rotation      -> /numerics/rotation
@@ -23,11 +24,11 @@
 namespace ballast {
 
 struct SceneKey {
-  std::string_view study_key;      // a key of kStudyKeys (study_keys.hpp)
+  std::string_view study_key;      // a study key (study_keys.hpp)
   std::string_view scene_pointer;  // JSON Pointer into a scene file (docs/BOX_TEST.md)
 };
 
-// Every study key and where it goes, in the order of kStudyKeys.
+// Every study key and where it goes, in the order of study_keys().
 std::span<const SceneKey> scene_keys();
 
 // The base scene with the run's parameters and seed written in. A run that names a

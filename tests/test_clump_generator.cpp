@@ -396,10 +396,13 @@ TEST(ClumpGenerator, BadParametersAreRejectedNamingTheField) {
                   "virtual_sphere_factor");
   expect_rejected(with([](ClumpParams& q) { q.min_radius_fraction = 0.0; }), "min_radius_fraction");
   expect_rejected(with([](ClumpParams& q) { q.min_radius_fraction = 1.0; }), "min_radius_fraction");
-  // The message also says what is allowed, e.g. "clump parameter 'p' = 1.5 is outside [0, 1]".
+  // The message also says what is allowed, from the parameter table.
   expect_error<std::invalid_argument>(
       [&] { validate_clump_params(with([](ClumpParams& q) { q.p = 1.5; })); },
-      {"clump parameter 'p' = 1.5 is outside [0, 1]"});
+      {"clump parameter 'p' = 1.5 is not allowed (allowed: in [0, 1])"});
+  expect_error<std::invalid_argument>(
+      [&] { validate_clump_params(with([](ClumpParams& q) { q.c = 1.0; })); },
+      {"clump parameter 'c' = 1 is not allowed (allowed: in [0, 1) (fraction of R))"});
 }
 
 TEST(ClumpPresets, UnknownPresetListsTheAvailableOnes) {

@@ -84,7 +84,7 @@ TEST(StudyErrors, ValueOutOfRange) {
   expect_refused_matrix(R"({"axes": {"dt_safety": [0.8, 0]}})", "/matrix/axes/dt_safety/1",
                         {"dt_safety = 0", "a number in (0, 1]"});
   expect_refused_matrix(R"({"axes": {"gravity_factor": [0.5]}})", "/matrix/axes/gravity_factor/0",
-                        {"gravity_factor = 0.5", "a number >= 1"});
+                        {"gravity_factor = 0.5", "a number in [1, 1000]"});
   expect_refused_matrix(R"({"axes": {"cycles": [0]}})", "/matrix/axes/cycles/0",
                         {"cycles = 0", "an integer >= 1"});
 }

@@ -132,12 +132,11 @@ TEST(StudyScene, SpheresDropTheBaseScenesClump) {
 }
 
 TEST(StudyScene, AValueTheSceneRefusesNamesTheRunAndTheScenePath) {
-  // The study allows gravity_factor >= 1, the scene at most 1000.
-  const StudySpec s = expand(R"({"axes": {"gravity_factor": [2000]}})");
+  // The study allows any count >= 1; the scene refuses one that its box cannot hold.
+  const StudySpec s = expand(R"({"axes": {"count": [100000]}})");
   test_support::expect_error<StudyError>(
       [&] { parse_run_scene(run_scene_json(kBase, s.runs[0]), s.runs[0], "t.json", "s.json"); },
-      {"t.json: run 'gravity_factor=2000.0-r1'", "/preparation/gravity_factor = 2000.0",
-       "in [1, 1000]"});
+      {"t.json: run 'count=100000-r1'", "/particles/count = 100000", "1.8 box heights"});
 }
 
 TEST(StudyPlan, ShardsPartitionTheRuns) {

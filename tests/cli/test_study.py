@@ -563,11 +563,11 @@ class BadInput(unittest.TestCase):
                             "a number in [0, 1)")
 
     def test_value_the_scene_refuses_once_a_run_applies_it(self):
-        # The study allows gravity_factor >= 1; the scene allows at most 1000.
+        # The study allows any count >= 1; the scene refuses more than its box holds.
         f = write_study(scratch(),
-                        lambda s: s["matrix"].update(axes={"gravity_factor": [10, 2000]}))
-        self.assert_refused(f, "run 'spheres-gravity_factor=2000.0-r1'",
-                            "/preparation/gravity_factor = 2000.0", "in [1, 1000]")
+                        lambda s: s["matrix"].update(axes={"count": [40, 100000]}))
+        self.assert_refused(f, "run 'spheres-count=100000-r1'",
+                            "/particles/count = 100000", "1.8 box heights")
 
     def test_unknown_key_in_the_base_scene(self):
         d = scratch()
