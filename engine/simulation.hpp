@@ -32,6 +32,8 @@
 
 namespace ballast {
 
+struct IntegrationReport;  // integrator.hpp
+
 struct SimulationSettings {
   Vec3 domain_lo = Vec3::Zero();  // m: every ball centre must stay in [lo, hi]
   Vec3 domain_hi = Vec3::Ones();
@@ -184,6 +186,13 @@ class Simulation {
   // Each wall's force from the balls, N: the wall candidates' wrenches in list order.
   void sum_wall_forces(std::vector<Vec3>& force) const;
   void drive_walls();
+  // The end of do_step: each thread's join time; the error of a body that blew up
+  // (step, body, quantity); the automatic dt's refresh and whether the neighbour
+  // list is rebuilt before the next step (the half-skin rule, a wall's move, or the
+  // rebuild policy; lists_remade: the live lists were remade this step).
+  void close_phase_times(int threads);
+  [[noreturn]] void throw_blow_up(const IntegrationReport& r) const;
+  void schedule_rebuild(double wall_shift2, bool lists_remade);
   // Both, then the largest squared wall move since the last build (m²).
   double move_walls();
   // Normal tangent stiffness of wall contact c (ball `ball` on wall w) at the normal

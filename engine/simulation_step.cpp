@@ -269,34 +269,42 @@ void Simulation::do_step() {
           {float(t0 - region_start), float(t1 - t0), float(t2 - t1), float(t3 - t2), 0.0f});
     }
   }
-  if (timing) {
-    const double region_end = omp_get_wtime();
-    for (int t = 0; t < threads; ++t) {
-      PhaseTimes::Thread& p = phase_times_.thread[t];
-      p.join += region_end - phase_end_[t];
-      if (!p.per_step.empty()) p.per_step.back()[4] = float(region_end - phase_end_[t]);
-    }
-    ++phase_times_.steps;
-  }
+  if (timing) close_phase_times(threads);
   contact_split_.update();
   integrate_split_.update();
   if (wall_error) std::rethrow_exception(wall_error);
   finish_report(bodies_, r);
-  if (r.bad_body != kNoIndex) {
-    std::ostringstream m;
-    m << "step " << steps_ << ": body " << r.bad_body;
-    if (r.bad_is_nan) {
-      m << " velocity is not finite (NaN or Inf)";
-    } else {
-      m << " speed " << bodies_.velocity[r.bad_body].norm() << " m/s exceeds max_speed "
-        << settings_.max_speed << " m/s: kinetic energy is exploding";
-    }
-    m << " (dt = " << dt_ << " s, critical estimate " << estimate_.critical << " s)";
-    throw SimulationError(steps_, r.bad_body, r.bad_is_nan ? "velocity" : "speed", m.str());
-  }
+  if (r.bad_body != kNoIndex) throw_blow_up(r);
   shift_since_build_ = std::sqrt(r.max_ball_shift2);
   time_ += dt_;
   ++steps_;
+  schedule_rebuild(wall_shift2, refresh_live || make_flat);
+}
+
+void Simulation::close_phase_times(int threads) {
+  const double region_end = omp_get_wtime();
+  for (int t = 0; t < threads; ++t) {
+    PhaseTimes::Thread& p = phase_times_.thread[t];
+    p.join += region_end - phase_end_[t];
+    if (!p.per_step.empty()) p.per_step.back()[4] = float(region_end - phase_end_[t]);
+  }
+  ++phase_times_.steps;
+}
+
+void Simulation::throw_blow_up(const IntegrationReport& r) const {
+  std::ostringstream m;
+  m << "step " << steps_ << ": body " << r.bad_body;
+  if (r.bad_is_nan) {
+    m << " velocity is not finite (NaN or Inf)";
+  } else {
+    m << " speed " << bodies_.velocity[r.bad_body].norm() << " m/s exceeds max_speed "
+      << settings_.max_speed << " m/s: kinetic energy is exploding";
+  }
+  m << " (dt = " << dt_ << " s, critical estimate " << estimate_.critical << " s)";
+  throw SimulationError(steps_, r.bad_body, r.bad_is_nan ? "velocity" : "speed", m.str());
+}
+
+void Simulation::schedule_rebuild(double wall_shift2, bool lists_remade) {
   // Contacts form between rebuilds too (a bed being squeezed): refresh the
   // automatic timestep often enough that it never trails them by much.
   if (!settings_.fixed_dt && steps_ % kTimestepRefreshSteps == 0) update_timestep();
@@ -305,7 +313,7 @@ void Simulation::do_step() {
       shift_since_build_ + growth_since_build() > half || wall_shift2 > half * half;
   // The live lists were remade this step (by the force pass, the gather or the kernel's
   // flat sequence): count them for the rebuild policy, serially, a few times a build.
-  if (refresh_live || make_flat) rebuild_policy_.live_count(live_candidates());
+  if (lists_remade) rebuild_policy_.live_count(live_candidates());
   const bool pays = rebuild_policy_.step_taken() && settings_.adaptive_rebuild;
   if (!needs_rebuild_ && !required && pays) ++early_builds_;
   needs_rebuild_ = needs_rebuild_ || required || pays;
