@@ -3,7 +3,7 @@
 // goes through it: validation (validate_clump_params), the preset files
 // (cases/clump_presets.cpp), the scene's /particles/clump overrides
 // (cases/clump_overrides.cpp, also the study's route), the study keys
-// (study/study_keys.cpp), the archive (study/clump_archive.cpp) and `ballast clump
+// (study/matrix/study_keys.cpp), the archive (study/archive/clump_archive.cpp) and `ballast clump
 // --json`. Adding a parameter is a member in ClumpParams, its row here and its use
 // in the generator; ClumpParamTable.EveryMemberHasARow fails while the row is
 // missing.

@@ -1,6 +1,6 @@
 // FNV-1a, 64 bits, over raw bytes: the one hash of the project. The state hash folds
 // every double of a run into it (state_hash.hpp: sensitive to every bit), and the
-// study runner hashes a run's canonical text into its seed (study/study_run.hpp).
+// study runner hashes a run's canonical text into its seed (study/matrix/run_identity.hpp).
 #pragma once
 
 #include <cstddef>

@@ -20,7 +20,7 @@ struct PhaseTimes {
     double join = 0.0;       // from its end of the region until the region ends
     // The same five phases step by step (s, in the order above): a sum is dominated
     // by the few steps in which the host took a vCPU away for milliseconds, and a
-    // median shows what the step costs when it does not (study/phase_stats.hpp).
+    // median shows what the step costs when it does not (tests/bench/bed/phase_stats.hpp).
     std::vector<std::array<float, 5>> per_step;
   };
   std::vector<Thread> thread;

@@ -3,12 +3,12 @@
 Two kinds, told apart by the root attribute `format`:
   "ballast-run"    `ballast run SCENE.json -o RUN.h5`: one run under /run and the
                    scene (after --set overrides) as root attribute scene_json
-                   (layout: study/run_archive.hpp)
+                   (layout: study/archive/run_archive.hpp)
   "ballast-study"  `ballast study STUDY.json -o ARCHIVE.h5`: one group /runs/<id> per
                    run with the same content as /run, plus attributes status ("ok" or
                    "failed"), message, sample, params (JSON text), a clumps/ group with
                    the clump templates of clump runs (dataset names of
-                   study/clump_archive.hpp) and particles/displacement_{peak,end}
+                   study/archive/clump_archive.hpp) and particles/displacement_{peak,end}
                    (docs/ARCHIVE.md)
 
     with open_archive("results/default.h5") as archive:

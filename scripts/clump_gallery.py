@@ -2,7 +2,7 @@
 """Gallery of typical clumps, like Fig. 7 of Lu & McDowell (2007).
 
 Reads the HDF5 archives written by `ballast clump -o FILE.h5` (layout in
-study/clump_archive.hpp), one per sample, and draws one typical clump of each,
+study/archive/clump_archive.hpp), one per sample, and draws one typical clump of each,
 rendered as shaded spheres, with the sample's average number of balls per clump in
 the title. "Typical" = the clump whose ball count is nearest the sample mean and,
 among those, whose sphericity is nearest the sample's mean sphericity. The drawing

@@ -2,7 +2,7 @@
 
 Shared by scripts/clump_gallery.py (clump archives, `ballast clump -o`) and
 scripts/figures.py (the clump templates of a study archive's runs). A *sample* is a
-dict of the clump archive's datasets (study/clump_archive.hpp):
+dict of the clump archive's datasets (study/archive/clump_archive.hpp):
 
     radius [N], offset [N, 3] (m, principal frame), first [M], count [M],
     sphericity [M] or None, attrs (the archive's attributes, may be empty)

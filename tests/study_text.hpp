@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
-#include "study/study_json.hpp"
-#include "study/study_matrix.hpp"
+#include "study/matrix/study_json.hpp"
+#include "study/matrix/study_matrix.hpp"
 
 namespace ballast::study_text {
 

@@ -10,7 +10,7 @@
 #include "cases/clump_overrides.hpp"
 #include "cases/clump_presets.hpp"
 #include "engine/clump_param_table.hpp"
-#include "study/study_keys.hpp"
+#include "study/matrix/study_keys.hpp"
 #include "test_helpers.hpp"
 
 namespace ballast {

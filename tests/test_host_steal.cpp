@@ -1,7 +1,7 @@
-// Reading the hypervisor's steal time from /proc/stat (study/host_steal.hpp).
+// Reading the hypervisor's steal time from /proc/stat (tests/bench/bed/host_steal.hpp).
 #include <gtest/gtest.h>
 
-#include "study/host_steal.hpp"
+#include "tests/bench/bed/host_steal.hpp"
 
 using namespace ballast;
 

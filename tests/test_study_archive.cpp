@@ -1,5 +1,5 @@
-// The study archive read back with the HDF5 C API (study/study_archive.hpp,
-// study/study_store.hpp, docs/ARCHIVE.md): what is written is what is read, seeds in
+// The study archive read back with the HDF5 C API (study/archive/study_archive.hpp,
+// study/archive/study_store.hpp, docs/ARCHIVE.md): what is written is what is read, seeds in
 // full 64 bits, the fingerprint tells studies apart, and the store refuses, rebuilds
 // and cleans up as documented. Synthetic results: nothing is simulated here (the runs
 // themselves are tests/cli/test_study.py's).
@@ -9,10 +9,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "study/hdf5_read.hpp"
-#include "study/study_archive.hpp"
-#include "study/study_json.hpp"
-#include "study/study_store.hpp"
+#include "study/archive/hdf5_read.hpp"
+#include "study/archive/study_archive.hpp"
+#include "study/archive/study_store.hpp"
+#include "study/matrix/study_json.hpp"
 #include "study_text.hpp"
 #include "test_helpers.hpp"
 

@@ -6,8 +6,8 @@
 #include <initializer_list>
 #include <string>
 
-#include "study/study_json.hpp"
-#include "study/study_matrix.hpp"
+#include "study/matrix/study_json.hpp"
+#include "study/matrix/study_matrix.hpp"
 #include "study_text.hpp"
 
 namespace ballast {

@@ -1,4 +1,4 @@
-// A study file expanded into runs (study/study_matrix.hpp, docs/STUDY.md): how many
+// A study file expanded into runs (study/matrix/study_matrix.hpp, docs/STUDY.md): how many
 // runs, in which order, with which parameters, ids and seeds, and that ids and seeds
 // stay put when unrelated runs are added. Bad input: tests/test_study_errors.cpp.
 #include <gtest/gtest.h>
@@ -7,9 +7,9 @@
 #include <set>
 #include <string>
 
-#include "study/study_json.hpp"
-#include "study/study_matrix.hpp"
-#include "study/study_run.hpp"
+#include "study/matrix/run_identity.hpp"
+#include "study/matrix/study_json.hpp"
+#include "study/matrix/study_matrix.hpp"
 #include "study_text.hpp"
 
 namespace ballast {

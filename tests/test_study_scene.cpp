@@ -1,4 +1,4 @@
-// What a study run runs (study/study_scene.hpp, study/study_plan.hpp): its parameters
+// What a study run runs (study/matrix/study_scene.hpp, study/matrix/study_plan.hpp): its parameters
 // on the scene's keys, its clump exactly as docs/STUDY.md resolves it, its seed in
 // full; the scene's own refusals with the run named; shards; jobs x threads.
 #include <gtest/gtest.h>
@@ -6,11 +6,11 @@
 #include <set>
 
 #include "cases/clump_presets.hpp"
-#include "study/study_json.hpp"
-#include "study/study_keys.hpp"
-#include "study/study_plan.hpp"
-#include "study/study_run.hpp"
-#include "study/study_scene.hpp"
+#include "study/matrix/run_identity.hpp"
+#include "study/matrix/study_json.hpp"
+#include "study/matrix/study_keys.hpp"
+#include "study/matrix/study_plan.hpp"
+#include "study/matrix/study_scene.hpp"
 #include "study_text.hpp"
 #include "test_helpers.hpp"
 

@@ -1,11 +1,11 @@
-#include "study/clump_archive.hpp"
+#include "study/archive/clump_archive.hpp"
 
 #include <hdf5.h>
 
 #include <stdexcept>
 
 #include "engine/clump_param_table.hpp"
-#include "study/hdf5_util.hpp"
+#include "study/archive/hdf5_util.hpp"
 
 namespace ballast {
 

@@ -1,8 +1,8 @@
-#include "study/hdf5_read.hpp"
+#include "study/archive/hdf5_read.hpp"
 
 #include <algorithm>
 
-#include "study/hdf5_util.hpp"
+#include "study/archive/hdf5_util.hpp"
 
 namespace ballast::h5 {
 

@@ -1,9 +1,9 @@
-#include "study/run_archive.hpp"
+#include "study/archive/run_archive.hpp"
 
 #include <cstdio>
 
-#include "study/clump_archive.hpp"
-#include "study/hdf5_util.hpp"
+#include "study/archive/clump_archive.hpp"
+#include "study/archive/hdf5_util.hpp"
 
 namespace ballast {
 

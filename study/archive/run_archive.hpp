@@ -18,7 +18,7 @@
 //             rotation_{loading,unloading,cycle} [N] (deg), shape_index [N]
 //   porosity/{sphere_heights,sphere_porosity}
 //   clumps/        clump samples only: the templates, as `ballast clump -o` writes
-//                  them (study/clump_archive.hpp); body i is template shape_index[i]
+//                  them (study/archive/clump_archive.hpp); body i is template shape_index[i]
 #pragma once
 
 #include <hdf5.h>

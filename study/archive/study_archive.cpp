@@ -1,12 +1,12 @@
-#include "study/study_archive.hpp"
+#include "study/archive/study_archive.hpp"
 
 #include <cstdio>
 #include <ctime>
 
+#include "study/archive/hdf5_read.hpp"
+#include "study/archive/run_archive.hpp"
 #include "study/build_info.hpp"
-#include "study/hdf5_read.hpp"
-#include "study/run_archive.hpp"
-#include "study/study_run.hpp"
+#include "study/matrix/run_identity.hpp"
 
 namespace ballast {
 

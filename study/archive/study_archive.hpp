@@ -11,7 +11,7 @@
 //   /runs/<id>        id, index, sample, params, seed, replicate, status, message,
 //                     started, finished, wall_seconds, threads, git_revision,
 //                     scene_json; dataset log; for an ok run everything
-//                     write_box_test_result() writes (study/run_archive.hpp)
+//                     write_box_test_result() writes (study/archive/run_archive.hpp)
 #pragma once
 
 #include <hdf5.h>
@@ -24,9 +24,9 @@
 #include <vector>
 
 #include "cases/box_test_result.hpp"
-#include "study/hdf5_util.hpp"
-#include "study/study_matrix.hpp"
-#include "study/study_plan.hpp"
+#include "study/archive/hdf5_util.hpp"
+#include "study/matrix/study_matrix.hpp"
+#include "study/matrix/study_plan.hpp"
 
 namespace ballast {
 

@@ -1,4 +1,4 @@
-#include "study/study_store.hpp"
+#include "study/archive/study_store.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "study/hdf5_read.hpp"
+#include "study/archive/hdf5_read.hpp"
 
 namespace ballast {
 

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "study/study_archive.hpp"
+#include "study/archive/study_archive.hpp"
 
 namespace ballast {
 

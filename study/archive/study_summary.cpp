@@ -1,13 +1,13 @@
-#include "study/study_summary.hpp"
+#include "study/archive/study_summary.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
 #include <ostream>
 
-#include "study/hdf5_read.hpp"
-#include "study/replicate_stats.hpp"
-#include "study/study_archive.hpp"
+#include "study/archive/hdf5_read.hpp"
+#include "study/archive/replicate_stats.hpp"
+#include "study/archive/study_archive.hpp"
 
 namespace ballast {
 

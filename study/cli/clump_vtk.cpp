@@ -1,4 +1,4 @@
-#include "study/clump_vtk.hpp"
+#include "study/cli/clump_vtk.hpp"
 
 #include <cmath>
 #include <filesystem>

@@ -1,4 +1,4 @@
-#include "study/cmd_clump.hpp"
+#include "study/cli/cmd_clump.hpp"
 
 #include <omp.h>
 
@@ -14,8 +14,8 @@
 #include "engine/clump_batch.hpp"
 #include "engine/clump_param_table.hpp"
 #include "engine/clump_shape.hpp"
-#include "study/clump_archive.hpp"
-#include "study/clump_vtk.hpp"
+#include "study/archive/clump_archive.hpp"
+#include "study/cli/clump_vtk.hpp"
 
 namespace ballast {
 namespace {
@@ -72,6 +72,106 @@ std::vector<Row> summary_rows(const std::vector<ClumpTemplate>& clumps,
   };
 }
 
+// What the command measured, for the two ways it prints it.
+struct ClumpReport {
+  const ClumpPreset& preset;
+  const ClumpMassOptions& mass;
+  const ClumpCommandOptions& o;
+  const ClumpShapeSummary& summary;
+  const std::vector<Row>& rows;
+  double seconds;         // s, generation and measurement
+  double expected;        // balls per clump, 1 + p N n + p^2 E m
+  double standard_error;  // of the measured mean ball count
+};
+
+void print_clump_json(const ClumpReport& c) {
+  const ClumpPreset& preset = c.preset;
+  const ClumpParams& q = preset.params;
+  const ClumpMassOptions& mass = c.mass;
+  const ClumpCommandOptions& o = c.o;
+  const bool has_paper = preset.paper_clumps.has_value();
+  const double paper_mean =
+      has_paper ? static_cast<double>(*preset.paper_balls) / *preset.paper_clumps : 0.0;
+  nlohmann::ordered_json j;
+  j["preset"] = preset.name;
+  j["source"] = preset.source;
+  // Every parameter by its table name (lengths in metres carry "_m").
+  nlohmann::ordered_json& params = j["parameters"];
+  for (const ClumpParamField& f : clump_param_fields()) {
+    const std::string key = std::string(f.name) + (f.unit == "m" ? "_m" : "");
+    if (f.kind == ClumpParamKind::kInteger) params[key] = static_cast<int>(f.value(q));
+    if (f.kind == ClumpParamKind::kNumber) params[key] = f.value(q);
+    if (f.kind == ClumpParamKind::kChoice) params[key] = f.text(q);
+  }
+  params["central_radius_m"] = central_ball_radius(q);
+  params["virtual_radius_m"] = virtual_sphere_radius(q);
+  j["mass"] = {{"mode", mass_mode_name(mass.mode)},
+               {"density_kg_m3", mass.density},
+               {"accuracy", mass.accuracy}};
+  j["count"] = o.count;
+  j["seed"] = o.seed;
+  j["threads"] = omp_get_max_threads();
+  j["seconds"] = c.seconds;
+  j["expected_balls_per_clump"] = c.expected;
+  j["balls_per_clump_standard_error"] = c.standard_error;
+  if (has_paper) {
+    j["paper"] = {{"clumps", *preset.paper_clumps},
+                  {"balls", *preset.paper_balls},
+                  {"balls_per_clump", paper_mean}};
+  }
+  for (const Row& r : c.rows) {
+    j["statistics"][r.key] = {
+        {"mean", r.stat.mean}, {"min", r.stat.min}, {"max", r.stat.max}, {"stddev", r.stat.stddev}};
+  }
+  std::cout << j.dump(2) << "\n";
+}
+
+void print_clump_text(const ClumpReport& c) {
+  const ClumpPreset& preset = c.preset;
+  const ClumpParams& q = preset.params;
+  const ClumpMassOptions& mass = c.mass;
+  const ClumpCommandOptions& o = c.o;
+  const bool has_paper = preset.paper_clumps.has_value();
+  const double paper_mean =
+      has_paper ? static_cast<double>(*preset.paper_balls) / *preset.paper_clumps : 0.0;
+  std::printf("clumps: %s%s%s\n", preset.name.c_str(), preset.source.empty() ? "" : " - ",
+              preset.source.c_str());
+  std::printf(
+      "  %d directions (%s adjacency), p %.2f, %d balls/direction, c %.2f R, "
+      "D3 %.2f R, %d edge balls\n",
+      q.directions, adjacency_name(q.adjacency), q.p, q.balls_per_direction, q.c, q.d3,
+      q.edge_balls);
+  std::printf(
+      "  nominal diameter %.2f mm, virtual sphere Rv = %.2f x %.3f mm = %.3f mm, "
+      "central ball R = %.3f mm\n",
+      q.nominal_diameter * 1e3, q.virtual_sphere_factor, q.nominal_diameter * 500.0,
+      virtual_sphere_radius(q) * 1e3, central_ball_radius(q) * 1e3);
+  char accuracy[48] = "";
+  if (mass.mode == MassMode::kUniform) {
+    std::snprintf(accuracy, sizeof accuracy, ", accuracy %g", mass.accuracy);
+  }
+  std::printf(
+      "  mass mode %s, density %.0f kg/m^3%s; %ld clumps, seed %llu, %d threads, "
+      "%.2f s\n\n",
+      mass_mode_name(mass.mode), mass.density, accuracy, o.count,
+      static_cast<unsigned long long>(o.seed), omp_get_max_threads(), c.seconds);
+  std::printf("  %-30s %12s %12s %12s\n", "statistic", "mean", "min", "max");
+  for (const Row& r : c.rows) {
+    if (mass.mode != MassMode::kUniform && std::string(r.key) == "integration_error") continue;
+    std::printf("  %-30s %12.4g %12.4g %12.4g\n", r.label, r.stat.mean * r.scale,
+                r.stat.min * r.scale, r.stat.max * r.scale);
+  }
+  std::printf(
+      "\n  balls per clump: measured %.3f +- %.3f (standard error), expected %.3f "
+      "(1 + p N n + p^2 E m)",
+      c.summary.balls.mean, c.standard_error, c.expected);
+  if (has_paper) {
+    std::printf(", paper %.3f (%d balls / %d clumps)", paper_mean, *preset.paper_balls,
+                *preset.paper_clumps);
+  }
+  std::printf("\n");
+}
+
 void run_clump_command(const ClumpCommandOptions& o) {
   if (o.list) {
     for (const std::string& name : available_clump_presets()) std::cout << name << "\n";
@@ -100,85 +200,13 @@ void run_clump_command(const ClumpCommandOptions& o) {
   const ClumpShapeSummary summary = summarize_shapes(shapes);
   const std::vector<Row> rows = summary_rows(clumps, summary);
 
-  const double expected = expected_ball_count(q);
   const double standard_error = summary.balls.stddev / std::sqrt(static_cast<double>(o.count));
-  const bool has_paper = preset.paper_clumps.has_value();
-  const double paper_mean =
-      has_paper ? static_cast<double>(*preset.paper_balls) / *preset.paper_clumps : 0.0;
-
-  if (o.json) {
-    nlohmann::ordered_json j;
-    j["preset"] = preset.name;
-    j["source"] = preset.source;
-    // Every parameter by its table name (lengths in metres carry "_m").
-    nlohmann::ordered_json& params = j["parameters"];
-    for (const ClumpParamField& f : clump_param_fields()) {
-      const std::string key = std::string(f.name) + (f.unit == "m" ? "_m" : "");
-      if (f.kind == ClumpParamKind::kInteger) params[key] = static_cast<int>(f.value(q));
-      if (f.kind == ClumpParamKind::kNumber) params[key] = f.value(q);
-      if (f.kind == ClumpParamKind::kChoice) params[key] = f.text(q);
-    }
-    params["central_radius_m"] = central_ball_radius(q);
-    params["virtual_radius_m"] = virtual_sphere_radius(q);
-    j["mass"] = {{"mode", mass_mode_name(mass.mode)},
-                 {"density_kg_m3", mass.density},
-                 {"accuracy", mass.accuracy}};
-    j["count"] = o.count;
-    j["seed"] = o.seed;
-    j["threads"] = omp_get_max_threads();
-    j["seconds"] = seconds;
-    j["expected_balls_per_clump"] = expected;
-    j["balls_per_clump_standard_error"] = standard_error;
-    if (has_paper) {
-      j["paper"] = {{"clumps", *preset.paper_clumps},
-                    {"balls", *preset.paper_balls},
-                    {"balls_per_clump", paper_mean}};
-    }
-    for (const Row& r : rows) {
-      j["statistics"][r.key] = {{"mean", r.stat.mean},
-                                {"min", r.stat.min},
-                                {"max", r.stat.max},
-                                {"stddev", r.stat.stddev}};
-    }
-    std::cout << j.dump(2) << "\n";
-  } else {
-    std::printf("clumps: %s%s%s\n", preset.name.c_str(), preset.source.empty() ? "" : " - ",
-                preset.source.c_str());
-    std::printf(
-        "  %d directions (%s adjacency), p %.2f, %d balls/direction, c %.2f R, "
-        "D3 %.2f R, %d edge balls\n",
-        q.directions, adjacency_name(q.adjacency), q.p, q.balls_per_direction, q.c, q.d3,
-        q.edge_balls);
-    std::printf(
-        "  nominal diameter %.2f mm, virtual sphere Rv = %.2f x %.3f mm = %.3f mm, "
-        "central ball R = %.3f mm\n",
-        q.nominal_diameter * 1e3, q.virtual_sphere_factor, q.nominal_diameter * 500.0,
-        virtual_sphere_radius(q) * 1e3, central_ball_radius(q) * 1e3);
-    char accuracy[48] = "";
-    if (mass.mode == MassMode::kUniform) {
-      std::snprintf(accuracy, sizeof accuracy, ", accuracy %g", mass.accuracy);
-    }
-    std::printf(
-        "  mass mode %s, density %.0f kg/m^3%s; %ld clumps, seed %llu, %d threads, "
-        "%.2f s\n\n",
-        mass_mode_name(mass.mode), mass.density, accuracy, o.count,
-        static_cast<unsigned long long>(o.seed), omp_get_max_threads(), seconds);
-    std::printf("  %-30s %12s %12s %12s\n", "statistic", "mean", "min", "max");
-    for (const Row& r : rows) {
-      if (mass.mode != MassMode::kUniform && std::string(r.key) == "integration_error") continue;
-      std::printf("  %-30s %12.4g %12.4g %12.4g\n", r.label, r.stat.mean * r.scale,
-                  r.stat.min * r.scale, r.stat.max * r.scale);
-    }
-    std::printf(
-        "\n  balls per clump: measured %.3f +- %.3f (standard error), expected %.3f "
-        "(1 + p N n + p^2 E m)",
-        summary.balls.mean, standard_error, expected);
-    if (has_paper) {
-      std::printf(", paper %.3f (%d balls / %d clumps)", paper_mean, *preset.paper_balls,
-                  *preset.paper_clumps);
-    }
-    std::printf("\n");
-  }
+  const ClumpReport report{preset,        mass, o, summary, rows, seconds, expected_ball_count(q),
+                           standard_error};
+  if (o.json)
+    print_clump_json(report);
+  else
+    print_clump_text(report);
 
   if (!o.output.empty()) {
     write_clump_archive(o.output, ClumpArchiveHeader{preset.name, preset.source, q, mass, o.seed},

@@ -1,4 +1,4 @@
-#include "study/cmd_demo.hpp"
+#include "study/cli/cmd_demo.hpp"
 
 #include <omp.h>
 

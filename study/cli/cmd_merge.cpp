@@ -1,4 +1,4 @@
-#include "study/cmd_merge.hpp"
+#include "study/cli/cmd_merge.hpp"
 
 #include <filesystem>
 #include <iostream>
@@ -6,10 +6,10 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "study/command_exit.hpp"
-#include "study/hdf5_read.hpp"
-#include "study/study_archive.hpp"
-#include "study/study_summary.hpp"
+#include "study/archive/hdf5_read.hpp"
+#include "study/archive/study_archive.hpp"
+#include "study/archive/study_summary.hpp"
+#include "study/cli/command_exit.hpp"
 
 namespace ballast {
 

@@ -1,4 +1,4 @@
-#include "study/cmd_run.hpp"
+#include "study/cli/cmd_run.hpp"
 
 #include <omp.h>
 
@@ -13,10 +13,10 @@
 #include "cases/box_test_load.hpp"
 #include "cases/packing_bodies.hpp"
 #include "engine/errors.hpp"
-#include "study/output_paths.hpp"
-#include "study/run_archive.hpp"
-#include "study/run_summary.hpp"
-#include "study/run_vtk.hpp"
+#include "study/archive/run_archive.hpp"
+#include "study/cli/output_paths.hpp"
+#include "study/cli/run_summary.hpp"
+#include "study/cli/run_vtk.hpp"
 
 namespace ballast {
 

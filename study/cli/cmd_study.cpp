@@ -1,10 +1,10 @@
-#include "study/cmd_study.hpp"
+#include "study/cli/cmd_study.hpp"
 
 #include <memory>
 
 #include "engine/errors.hpp"
-#include "study/command_exit.hpp"
-#include "study/study_runner.hpp"
+#include "study/cli/command_exit.hpp"
+#include "study/running/study_runner.hpp"
 
 namespace ballast {
 

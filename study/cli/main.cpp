@@ -5,13 +5,13 @@
 #include <iostream>
 
 #include "engine/errors.hpp"
-#include "study/cmd_bench_bed.hpp"
-#include "study/cmd_clump.hpp"
-#include "study/cmd_demo.hpp"
-#include "study/cmd_merge.hpp"
-#include "study/cmd_run.hpp"
-#include "study/cmd_study.hpp"
-#include "study/command_exit.hpp"
+#include "study/cli/cmd_clump.hpp"
+#include "study/cli/cmd_demo.hpp"
+#include "study/cli/cmd_merge.hpp"
+#include "study/cli/cmd_run.hpp"
+#include "study/cli/cmd_study.hpp"
+#include "study/cli/command_exit.hpp"
+#include "tests/bench/bed/cmd_bench_bed.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"Ballast: DEM box tests of railway ballast (Lu & McDowell 2007)"};

@@ -1,4 +1,4 @@
-#include "study/output_paths.hpp"
+#include "study/cli/output_paths.hpp"
 
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-#include "study/run_summary.hpp"
+#include "study/cli/run_summary.hpp"
 
 #include <cstdio>
 #include <ostream>

@@ -1,4 +1,4 @@
-#include "study/run_vtk.hpp"
+#include "study/cli/run_vtk.hpp"
 
 #include <filesystem>
 #include <fstream>

@@ -1,12 +1,12 @@
-#include "study/study_run.hpp"
+#include "study/matrix/run_identity.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
 #include "cases/clump_overrides.hpp"
 #include "engine/clump_generator.hpp"
-#include "study/study_error.hpp"
-#include "study/study_keys.hpp"
+#include "study/matrix/study_error.hpp"
+#include "study/matrix/study_keys.hpp"
 
 namespace ballast {
 namespace {

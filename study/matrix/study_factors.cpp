@@ -1,14 +1,14 @@
-#include "study/study_factors.hpp"
+#include "study/matrix/study_factors.hpp"
 
 #include <cstdint>
 #include <map>
 #include <utility>
 
-#include "study/study_error.hpp"
-#include "study/study_json.hpp"
-#include "study/study_keys.hpp"
-#include "study/study_matrix.hpp"
-#include "study/study_run.hpp"
+#include "study/matrix/run_identity.hpp"
+#include "study/matrix/study_error.hpp"
+#include "study/matrix/study_json.hpp"
+#include "study/matrix/study_keys.hpp"
+#include "study/matrix/study_matrix.hpp"
 
 namespace ballast {
 namespace {

@@ -1,4 +1,4 @@
-#include "study/study_json.hpp"
+#include "study/matrix/study_json.hpp"
 
 #include <fstream>
 #include <optional>
@@ -6,7 +6,7 @@
 #include <sstream>
 #include <vector>
 
-#include "study/study_error.hpp"
+#include "study/matrix/study_error.hpp"
 
 namespace ballast {
 namespace {

@@ -1,4 +1,4 @@
-#include "study/study_keys.hpp"
+#include "study/matrix/study_keys.hpp"
 
 #include <algorithm>
 #include <climits>
@@ -8,7 +8,7 @@
 
 #include "engine/clump_param_table.hpp"
 #include "engine/contact_laws.hpp"
-#include "study/study_error.hpp"
+#include "study/matrix/study_error.hpp"
 
 namespace ballast {
 namespace {

@@ -1,4 +1,4 @@
-#include "study/study_matrix.hpp"
+#include "study/matrix/study_matrix.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -9,10 +9,10 @@
 #include <utility>
 
 #include "cases/clump_presets.hpp"
-#include "study/study_factors.hpp"
-#include "study/study_json.hpp"
-#include "study/study_keys.hpp"
-#include "study/study_run.hpp"
+#include "study/matrix/run_identity.hpp"
+#include "study/matrix/study_factors.hpp"
+#include "study/matrix/study_json.hpp"
+#include "study/matrix/study_keys.hpp"
 
 namespace ballast {
 namespace {

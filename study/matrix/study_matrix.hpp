@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "study/study_error.hpp"
+#include "study/matrix/study_error.hpp"
 
 namespace ballast {
 

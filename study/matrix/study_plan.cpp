@@ -1,4 +1,4 @@
-#include "study/study_plan.hpp"
+#include "study/matrix/study_plan.hpp"
 
 #include <algorithm>
 #include <charconv>

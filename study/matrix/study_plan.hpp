@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "study/study_matrix.hpp"
+#include "study/matrix/study_matrix.hpp"
 
 namespace ballast {
 

@@ -1,12 +1,12 @@
-#include "study/study_scene.hpp"
+#include "study/matrix/study_scene.hpp"
 
 #include <algorithm>
 #include <string>
 #include <vector>
 
 #include "engine/clump_param_table.hpp"
-#include "study/study_keys.hpp"
-#include "study/study_run.hpp"
+#include "study/matrix/run_identity.hpp"
+#include "study/matrix/study_keys.hpp"
 
 namespace ballast {
 namespace {

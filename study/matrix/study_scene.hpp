@@ -19,7 +19,7 @@
 #include <string_view>
 
 #include "cases/box_test_scene.hpp"
-#include "study/study_matrix.hpp"
+#include "study/matrix/study_matrix.hpp"
 
 namespace ballast {
 

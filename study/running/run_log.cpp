@@ -1,4 +1,4 @@
-#include "study/run_log.hpp"
+#include "study/running/run_log.hpp"
 
 #include <cctype>
 

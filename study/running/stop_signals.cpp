@@ -1,4 +1,4 @@
-#include "study/stop_signals.hpp"
+#include "study/running/stop_signals.hpp"
 
 #include <atomic>
 

@@ -1,10 +1,10 @@
-#include "study/study_progress.hpp"
+#include "study/running/study_progress.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "study/run_log.hpp"
+#include "study/running/run_log.hpp"
 
 namespace ballast {
 

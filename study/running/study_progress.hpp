@@ -12,7 +12,7 @@
 #include <ostream>
 #include <string>
 
-#include "study/study_archive.hpp"
+#include "study/archive/study_archive.hpp"
 
 namespace ballast {
 

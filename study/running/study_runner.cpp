@@ -1,4 +1,4 @@
-#include "study/study_runner.hpp"
+#include "study/running/study_runner.hpp"
 
 #include <omp.h>
 #include <unistd.h>
@@ -17,14 +17,14 @@
 #include <thread>
 
 #include "cases/box_test_load.hpp"
+#include "study/archive/study_store.hpp"
+#include "study/archive/study_summary.hpp"
 #include "study/build_info.hpp"
-#include "study/run_log.hpp"
-#include "study/stop_signals.hpp"
-#include "study/study_json.hpp"
-#include "study/study_progress.hpp"
-#include "study/study_scene.hpp"
-#include "study/study_store.hpp"
-#include "study/study_summary.hpp"
+#include "study/matrix/study_json.hpp"
+#include "study/matrix/study_scene.hpp"
+#include "study/running/run_log.hpp"
+#include "study/running/stop_signals.hpp"
+#include "study/running/study_progress.hpp"
 
 namespace ballast {
 
@@ -126,6 +126,86 @@ void print_dry_run(const PreparedStudy& p, const std::vector<const PreparedRun*>
   std::cout << "dry run: every scene checked, nothing run or written\n";
 }
 
+// The shard's runs not yet in the archive (and, with --retry-failed, those that
+// failed), dearest first: with fewer slots than runs the dearest run no longer starts
+// last and leaves the other slots idle while it finishes (the default study: Sample
+// 2 alone took as long as the other two together). Where each run's record goes does
+// not depend on the order.
+struct RunsToDo {
+  std::vector<const PreparedRun*> runs;
+  std::size_t archived = 0, retried = 0;
+};
+
+RunsToDo runs_to_do(const StudyStore& store, const std::vector<const PreparedRun*>& in_shard,
+                    bool retry_failed) {
+  RunsToDo t;
+  for (const PreparedRun* r : in_shard) {
+    const auto it = store.recorded().find(r->spec->id);
+    const bool found = it != store.recorded().end();
+    const bool retry = found && retry_failed && !it->second;
+    t.archived += found ? 1 : 0;
+    t.retried += retry ? 1 : 0;
+    if (!found || retry) t.runs.push_back(r);
+  }
+  std::stable_sort(t.runs.begin(), t.runs.end(), [](const PreparedRun* a, const PreparedRun* b) {
+    return estimated_cost(*a) > estimated_cost(*b);
+  });
+  return t;
+}
+
+// Until `done`: watches the signals and redraws the live board. SIGINT once: no new
+// run starts, those in flight finish. SIGTERM, or SIGINT again: exit now, once no
+// write is in progress (the archive is closed between writes), losing only the runs
+// in flight.
+void watch_signals(ProgressBoard& board, StudyStore& store, const std::atomic<bool>& done,
+                   bool live, const std::string& output) {
+  int seen = 0;
+  auto drawn = Clock::now();
+  while (!done.load()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const int n = StopSignals::count();
+    if (n > seen) {
+      seen = n;
+      const int sig = StopSignals::last();
+      if (sig == SIGINT && n == 1) {
+        board.note("interrupted (SIGINT): no new run starts; the " +
+                   std::to_string(board.in_flight()) +
+                   " in flight finish and are kept (Ctrl-C again abandons them)");
+      } else {
+        board.note(std::string("interrupted (") + (sig == SIGINT ? "SIGINT" : "SIGTERM") +
+                   "): abandoning the " + std::to_string(board.in_flight()) +
+                   " runs in flight; every finished run is in " + output +
+                   ": run the same command with --resume to finish the study");
+        std::lock_guard<std::mutex> lock(store.write_mutex());
+        std::cout.flush();
+        std::fflush(nullptr);
+        std::_Exit(128 + sig);
+      }
+    }
+    if (live && Clock::now() - drawn > std::chrono::milliseconds(500)) {
+      board.redraw();
+      drawn = Clock::now();
+    }
+  }
+}
+
+// Completes the archive and prints its summary; the exit code says whether any run
+// of the archive failed.
+int finish_study(StudyStore& store, const std::string& output, std::size_t study_runs,
+                 const Shard& shard) {
+  store.finish();
+  const std::vector<SummaryRow> rows = read_summary(output);
+  std::cout << "\n";
+  print_summary(std::cout, rows);
+  std::size_t failed = 0;
+  for (const SummaryRow& r : rows) failed += r.ok ? 0 : 1;
+  std::cout << "\n"
+            << output << ": " << rows.size() << " of " << study_runs << " runs of the study"
+            << (shard.whole() ? "" : " (shard " + shard.text() + ")") << ", " << failed
+            << " failed\n";
+  return failed > 0 ? kStudyExitRunsFailed : 0;
+}
+
 }  // namespace
 
 int run_study(const StudyOptions& o) {
@@ -164,23 +244,9 @@ int run_study(const StudyOptions& o) {
   if (!folder.empty()) std::filesystem::create_directories(folder);
   std::unique_ptr<StudyStore> store = o.resume ? StudyStore::resume(o.output, header, report)
                                                : StudyStore::create(o.output, header, report);
-  std::vector<const PreparedRun*> todo;
-  std::size_t archived = 0, retried = 0;
-  for (const PreparedRun* r : in_shard) {
-    const auto it = store->recorded().find(r->spec->id);
-    const bool found = it != store->recorded().end();
-    const bool retry = found && o.retry_failed && !it->second;
-    archived += found ? 1 : 0;
-    retried += retry ? 1 : 0;
-    if (!found || retry) todo.push_back(r);
-  }
-  // Longest first: with fewer slots than runs the dearest run no longer starts last
-  // and leaves the other slots idle while it finishes (the default study: Sample 2
-  // alone took as long as the other two together). Where each run's record goes does
-  // not depend on the order.
-  std::stable_sort(todo.begin(), todo.end(), [](const PreparedRun* a, const PreparedRun* b) {
-    return estimated_cost(*a) > estimated_cost(*b);
-  });
+  const RunsToDo to_do = runs_to_do(*store, in_shard, o.retry_failed);
+  const std::vector<const PreparedRun*>& todo = to_do.runs;
+  const std::size_t archived = to_do.archived, retried = to_do.retried;
   std::size_t other_builds = 0;  // runs another build made: results may not match ours
   for (const auto& [id, revision] : store->revisions()) other_builds += revision != kGitRevision;
   if (other_builds > 0) {
@@ -204,39 +270,7 @@ int run_study(const StudyOptions& o) {
   std::atomic<bool> stop{false}, done{false};
   {
     StopSignals signals;
-    // Watches the signals and redraws the live board. SIGINT once: no new run starts,
-    // those in flight finish. SIGTERM, or SIGINT again: exit now, once no write is in
-    // progress (the archive is closed between writes), losing only the runs in flight.
-    std::thread monitor([&] {
-      int seen = 0;
-      auto drawn = Clock::now();
-      while (!done.load()) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(100));
-        const int n = StopSignals::count();
-        if (n > seen) {
-          seen = n;
-          const int sig = StopSignals::last();
-          if (sig == SIGINT && n == 1) {
-            board.note("interrupted (SIGINT): no new run starts; the " +
-                       std::to_string(board.in_flight()) +
-                       " in flight finish and are kept (Ctrl-C again abandons them)");
-          } else {
-            board.note(std::string("interrupted (") + (sig == SIGINT ? "SIGINT" : "SIGTERM") +
-                       "): abandoning the " + std::to_string(board.in_flight()) +
-                       " runs in flight; every finished run is in " + o.output +
-                       ": run the same command with --resume to finish the study");
-            std::lock_guard<std::mutex> lock(store->write_mutex());
-            std::cout.flush();
-            std::fflush(nullptr);
-            std::_Exit(128 + sig);
-          }
-        }
-        if (live && Clock::now() - drawn > std::chrono::milliseconds(500)) {
-          board.redraw();
-          drawn = Clock::now();
-        }
-      }
-    });
+    std::thread monitor([&] { watch_signals(board, *store, done, live, o.output); });
 
     omp_set_max_active_levels(2);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(plan.jobs)
@@ -264,17 +298,7 @@ int run_study(const StudyOptions& o) {
               << "; run the same command with --resume to finish the study\n";
     return 128 + SIGINT;
   }
-  store->finish();
-  const std::vector<SummaryRow> rows = read_summary(o.output);
-  std::cout << "\n";
-  print_summary(std::cout, rows);
-  std::size_t failed = 0;
-  for (const SummaryRow& r : rows) failed += r.ok ? 0 : 1;
-  std::cout << "\n"
-            << o.output << ": " << rows.size() << " of " << p.spec.runs.size()
-            << " runs of the study" << (shard.whole() ? "" : " (shard " + shard.text() + ")")
-            << ", " << failed << " failed\n";
-  return failed > 0 ? kStudyExitRunsFailed : 0;
+  return finish_study(*store, o.output, p.spec.runs.size(), shard);
 }
 
 }  // namespace ballast

@@ -204,7 +204,7 @@ class RunCommand(unittest.TestCase):
 
     def test_vtk_files_hold_what_the_archive_holds(self):
         # ParaView reads these; each array must be the archive's, particle by particle
-        # and contact by contact, not merely present. Fails if study/run_vtk.cpp writes
+        # and contact by contact, not merely present. Fails if study/cli/run_vtk.cpp writes
         # a displacement as start − end (checked by hand: 715 of 720 values differ).
         with h5py.File(self.archive, "r") as f:
             p = f["run/particles"]

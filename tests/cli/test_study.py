@@ -335,7 +335,7 @@ class Interruption(unittest.TestCase):
 
     def test_a_reader_holding_the_archive_is_waited_for(self):
         # h5py holds HDF5's file lock while the archive is open; the study waits for it
-        # (up to 10 s, study/study_store.cpp) instead of leaving the run in its part.
+        # (up to 10 s, study/archive/study_store.cpp) instead of leaving the run in its part.
         # With one attempt only, the "cannot open ... to append" note would show.
         path = os.path.join(scratch(), "locked.h5")
         parts = path + ".parts"

@@ -1,4 +1,4 @@
-#include "study/bench_bed_scaling.hpp"
+#include "tests/bench/bed/bench_bed_scaling.hpp"
 
 #include <omp.h>
 
@@ -6,7 +6,7 @@
 #include <chrono>
 
 #include "engine/state_hash.hpp"
-#include "study/sample_quantile.hpp"
+#include "study/archive/sample_quantile.hpp"
 
 namespace ballast {
 

@@ -26,7 +26,7 @@
 
 #include "cases/bench_bed.hpp"
 #include "cases/packing_file.hpp"
-#include "study/host_steal.hpp"
+#include "tests/bench/bed/host_steal.hpp"
 
 namespace ballast {
 

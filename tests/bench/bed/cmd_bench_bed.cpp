@@ -1,4 +1,4 @@
-#include "study/cmd_bench_bed.hpp"
+#include "tests/bench/bed/cmd_bench_bed.hpp"
 
 #include <omp.h>
 
@@ -13,8 +13,8 @@
 #include "engine/errors.hpp"
 #include "engine/sphere_kernel.hpp"
 #include "engine/state_hash.hpp"
-#include "study/bench_bed_scaling.hpp"
-#include "study/phase_stats.hpp"
+#include "tests/bench/bed/bench_bed_scaling.hpp"
+#include "tests/bench/bed/phase_stats.hpp"
 
 namespace ballast {
 
@@ -73,7 +73,7 @@ std::string hex(unsigned long long h) {
   return s;
 }
 
-// --scaling: one thread against T in one process (study/bench_bed_scaling.hpp).
+// --scaling: one thread against T in one process (tests/bench/bed/bench_bed_scaling.hpp).
 void run_scaling(const BenchBedArgs& a, const Packing& packing) {
   const int threads = a.threads > 0 ? a.threads : omp_get_max_threads();
   if (threads < 2)

@@ -1,4 +1,4 @@
-#include "study/host_steal.hpp"
+#include "tests/bench/bed/host_steal.hpp"
 
 #include <fstream>
 #include <sstream>

@@ -1,8 +1,8 @@
-#include "study/phase_stats.hpp"
+#include "tests/bench/bed/phase_stats.hpp"
 
 #include <algorithm>
 
-#include "study/sample_quantile.hpp"
+#include "study/archive/sample_quantile.hpp"
 
 namespace ballast {
 

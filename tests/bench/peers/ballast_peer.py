@@ -1,4 +1,4 @@
-"""Our engine in the peer benchmark: `ballast bench-bed` (study/cmd_bench_bed.cpp) on
+"""Our engine in the peer benchmark: `ballast bench-bed` (tests/bench/bed/cmd_bench_bed.cpp) on
 the same packing file, with the same physics (cases/bench_bed.hpp)."""
 import json
 import os

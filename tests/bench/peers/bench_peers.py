@@ -13,11 +13,11 @@
    Printed: median ball-steps/s of the stepping per code and thread count, our ratio
    to each, our 2-thread/1-thread speed-up, whether our 1- and 2-thread states are
    bit-identical (state hash), and the physics after the run beside each other.
-   Each round ends with `ballast bench-bed --scaling` (study/bench_bed_scaling.hpp):
+   Each round ends with `ballast bench-bed --scaling` (tests/bench/bed/bench_bed_scaling.hpp):
    our speed-up from 1 to 2 threads measured in one process, copies of the bed
    taking turns every twentieth of the steps so that the host's drift cancels,
    beside what 2 independent copies at once gave in the same turns (the host's
-   bound), and the hypervisor's steal during each kind of turn (study/host_steal.hpp);
+   bound), and the hypervisor's steal during each kind of turn (tests/bench/bed/host_steal.hpp);
    its copies must end in the same state as the runs above.
 4. Exit 1 if a convention, the bit identity or the physics cross-check fails.
 """
