@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <limits>
 #include <set>
 #include <string>
 
@@ -75,7 +76,7 @@ TEST(ClumpParamTable, DefaultsAreAllowedAndRangesSayWhatTheyAllow) {
   EXPECT_EQ(find_clump_param("adjacency")->allowed(), "\"hull\" or \"face_to_diagonal\"");
   EXPECT_FALSE(find_clump_param("directions")->allows(8));
   EXPECT_FALSE(find_clump_param("balls_per_direction")->allows(1.5));
-  EXPECT_FALSE(find_clump_param("d3")->allows(1.0 / 0.0));
+  EXPECT_FALSE(find_clump_param("d3")->allows(std::numeric_limits<double>::infinity()));
 }
 
 // The study's clump keys are the table's overridable rows, with its ranges.
