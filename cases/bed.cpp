@@ -47,23 +47,11 @@ Simulation make_bed(const BedOptions& o) {
   const double bound = o.clumps ? r * o.clumps->virtual_sphere_factor : r;
   const Vec3 lo = Vec3::Zero();
   const Vec3 hi(o.length, o.width, kBedDomainTop);
-  SimulationSettings s;
+  SimulationSettings s = o.sim;
   // The domain reaches one bound past the walls so a ball pressed into a wall is
   // still inside it.
   s.domain_lo = lo - Vec3::Constant(2.0 * bound);
   s.domain_hi = hi + Vec3::Constant(2.0 * bound);
-  s.gravity = o.gravity;
-  s.local_damping = o.local_damping;
-  s.damping_ratio = o.damping_ratio;
-  s.dt_safety = o.dt_safety;
-  s.rotation = o.rotation;
-  s.sphere_fast_path = o.sphere_fast_path;
-  s.skip_far_candidates = o.skip_far_candidates;
-  s.adaptive_rebuild = o.adaptive_rebuild;
-  s.fixed_dt = o.fixed_dt;
-  s.simd_lanes = o.simd_lanes;
-  s.contact_law = o.contact_law;
-  s.log = o.log;
   Simulation sim(s);
   // Balls and side walls share one material (for Hertz–Mindlin, granite's moduli);
   // the base is rubber or the same.

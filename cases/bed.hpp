@@ -31,24 +31,15 @@ struct BedOptions {
   double volume_fraction = 0.3;  // of the loose random cloud the particles start as
   bool spatial_order = true;     // false: bodies numbered at random (to measure locality)
   double friction = box_test::kFrictionCompaction;
-  std::string contact_law = "linear";           // SimulationSettings::contact_law
   double stiffness = box_test::kBallStiffness;  // N/m, balls and side walls (linear law)
   bool rubber_base = true;                      // false: the base is as stiff as the sides
-  double local_damping = 0.7;
-  double damping_ratio = 0.0;
-  double dt_safety = 0.8;  // dt = dt_safety × critical estimate
-  Vec3 gravity = Vec3(0.0, 0.0, -9.81);
-  std::ostream* log = nullptr;
+  // The engine's settings (gravity, damping, timestep, contact law, the switches that
+  // tests and benchmarks compare); make_bed sets the domain from the box.
+  SimulationSettings sim;
   // Clumps instead of spheres: the sample's parameters (nominal_diameter is taken
-  // from `diameter`), how their mass is computed and how they rotate.
+  // from `diameter`) and how their mass is computed (sim.rotation: how they rotate).
   std::optional<ClumpParams> clumps;
   ClumpMassOptions mass;
-  RotationIntegrator rotation = RotationIntegrator::kPfc;
-  bool sphere_fast_path = true;     // SimulationSettings::sphere_fast_path
-  bool skip_far_candidates = true;  // SimulationSettings::skip_far_candidates
-  bool adaptive_rebuild = true;     // SimulationSettings::adaptive_rebuild
-  std::optional<double> fixed_dt;   // s; unset: dt_safety × critical estimate
-  int simd_lanes = -1;              // SimulationSettings::simd_lanes
   // Where the particles go (e.g. the centres of a settled sphere bed); empty: a loose
   // random cloud of `count` particles.
   std::vector<Vec3> centres;

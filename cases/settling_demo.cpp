@@ -51,11 +51,11 @@ SettlingDemoResult run_settling_demo(const SettlingDemoOptions& o, std::ostream&
   BedOptions bed;
   bed.count = o.spheres;
   bed.seed = o.seed;
-  bed.dt_safety = o.dt_safety;
-  bed.gravity = Vec3(0.0, 0.0, -9.81 * o.gravity_factor);
-  bed.local_damping = 0.0;
-  bed.damping_ratio = o.pour_damping_ratio;
-  bed.log = &out;
+  bed.sim.dt_safety = o.dt_safety;
+  bed.sim.gravity = Vec3(0.0, 0.0, -9.81 * o.gravity_factor);
+  bed.sim.local_damping = 0.0;
+  bed.sim.damping_ratio = o.pour_damping_ratio;
+  bed.sim.log = &out;
   Simulation sim = make_bed(bed);
   out << "settling demo: " << o.spheres << " spheres of " << bed.diameter * 1e3 << " mm in the "
       << bed.length * 1e3 << " x " << bed.width * 1e3

@@ -14,9 +14,9 @@ inline BedOptions settling_clump_bed_options() {
   o.width = 0.15;
   o.clumps = ClumpParams{};
   o.friction = 0.4;
-  o.damping_ratio = 0.1;
-  o.local_damping = 0.2;
-  o.gravity = Vec3(0, 0, -981.0);
+  o.sim.damping_ratio = 0.1;
+  o.sim.local_damping = 0.2;
+  o.sim.gravity = Vec3(0, 0, -981.0);
   return o;
 }
 

@@ -136,8 +136,8 @@ BedOptions sphere_bed(double damping_ratio) {
   o.volume_fraction = 0.35;
   o.friction = 0.4;
   o.stiffness *= kSoftening;
-  o.damping_ratio = damping_ratio;
-  o.gravity = kGravity;
+  o.sim.damping_ratio = damping_ratio;
+  o.sim.gravity = kGravity;
   return o;
 }
 
@@ -160,9 +160,9 @@ TEST(Determinism, SphereKernelGivesOneHashWithAnySharesOnOneToFourThreads) {
 TEST(Determinism, ClumpBedGivesOneHashWithAnySharesOnOneToFourThreads) {
   BedOptions o = settling_clump_bed_options();
   o.mass.mode = MassMode::kSum;
-  o.rotation = RotationIntegrator::kFull;
+  o.sim.rotation = RotationIntegrator::kFull;
   o.stiffness *= kSoftening;
-  o.gravity = kGravity;
+  o.sim.gravity = kGravity;
   expect_one_hash_on_every_team(o, 0.025, o.count);  // more than one contact per clump
 }
 
@@ -173,11 +173,11 @@ TEST(Determinism, EveryContactLawGivesOneHashWithAnySharesOnOneToFourThreads) {
   for (int law = 1; law < kContactLawCount; ++law) {
     SCOPED_TRACE(std::string(contact_law_name(law)));
     BedOptions spheres = sphere_bed(0.0);
-    spheres.contact_law = std::string(contact_law_name(law));
+    spheres.sim.contact_law = std::string(contact_law_name(law));
     expect_one_hash_on_every_team(spheres, 0.03, 300);
     BedOptions clumps = settling_clump_bed_options();
-    clumps.contact_law = spheres.contact_law;
-    clumps.gravity = kGravity;
+    clumps.sim.contact_law = spheres.sim.contact_law;
+    clumps.sim.gravity = kGravity;
     expect_one_hash_on_every_team(clumps, 0.025, clumps.count);
   }
 }
@@ -186,7 +186,7 @@ TEST(Determinism, EveryContactLawGivesOneHashWithAnySharesOnOneToFourThreads) {
 // branches, not arithmetic: it must end in the very state the general path reaches.
 TEST(Determinism, SphereFastPathGivesTheGeneralPathsBits) {
   BedOptions general = sphere_bed(0.1);
-  general.sphere_fast_path = false;
+  general.sim.sphere_fast_path = false;
   EXPECT_EQ(run_on(teams()[0], sphere_bed(0.1), 0.025, 300),
             run_on(teams()[0], general, 0.025, 300));
 }
@@ -202,8 +202,8 @@ std::uint64_t run_growing_clump_bed(bool skip_far_candidates) {
   const bool adaptive_rebuild = false;
   test_support::ScopedThreads one(1);
   BedOptions o = settling_clump_bed_options();
-  o.skip_far_candidates = skip_far_candidates;
-  o.adaptive_rebuild = adaptive_rebuild;
+  o.sim.skip_far_candidates = skip_far_candidates;
+  o.sim.adaptive_rebuild = adaptive_rebuild;
   Simulation sim = make_bed(o);
   while (sim.time() < 0.04) sim.step();
   const long builds_before_growth = sim.neighbour_builds();

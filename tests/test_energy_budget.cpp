@@ -24,11 +24,11 @@ EnergyBudget pour(int count, double dt_safety, double local_damping, double damp
   BedOptions o;
   o.count = count;
   o.friction = 0.5;
-  o.local_damping = local_damping;
-  o.damping_ratio = damping_ratio;
+  o.sim.local_damping = local_damping;
+  o.sim.damping_ratio = damping_ratio;
   o.rubber_base = false;
-  o.gravity = Vec3(0, 0, -98.1);
-  o.dt_safety = dt_safety;
+  o.sim.gravity = Vec3(0, 0, -98.1);
+  o.sim.dt_safety = dt_safety;
   Simulation sim = make_bed(o);
   while (sim.time() < 0.05) sim.step();
   return sim.energy();

@@ -99,8 +99,8 @@ SettlingRun settle_clumps(bool adaptive_rebuild) {
   BedOptions o = settling_clump_bed_options();
   Simulation probe = make_bed(o);
   probe.prepare();
-  o.fixed_dt = probe.dt();
-  o.adaptive_rebuild = adaptive_rebuild;
+  o.sim.fixed_dt = probe.dt();
+  o.sim.adaptive_rebuild = adaptive_rebuild;
   Simulation sim = make_bed(o);
   double live = 0.0;
   long steps = 0;

@@ -45,13 +45,13 @@ Outcome finish(Simulation& sim, double until) {
 // A cloud of 400 spheres landing at 100 g in a narrow box: a bed within 0.05 s.
 Outcome landing_bed(int lanes, double friction) {
   BedOptions o;
-  o.simd_lanes = lanes;
+  o.sim.simd_lanes = lanes;
   o.count = 400;
   o.length = 0.35;
   o.friction = friction;
-  o.damping_ratio = 0.0;  // the kernel's scenes: no dashpots
-  o.local_damping = 0.2;
-  o.gravity = Vec3(0, 0, -981.0);
+  o.sim.damping_ratio = 0.0;  // the kernel's scenes: no dashpots
+  o.sim.local_damping = 0.2;
+  o.sim.gravity = Vec3(0, 0, -981.0);
   Simulation sim = make_bed(o);
   return finish(sim, 0.05);
 }
@@ -119,7 +119,7 @@ TEST(SphereKernel, UnsupportedWidthIsRefused) {
   for (int lanes : {3, 16}) {
     BedOptions o;
     o.count = 10;
-    o.simd_lanes = lanes;
+    o.sim.simd_lanes = lanes;
     Simulation sim = make_bed(o);
     test_support::expect_error([&] { sim.step(); }, {"simd_lanes"});
   }

@@ -36,9 +36,9 @@ Simulation pour_clump_bed() {
   o.mass.mode = MassMode::kPaper;
   o.friction = 0.5;
   o.rubber_base = false;
-  o.gravity = Vec3(0, 0, -9.81 * 100);
-  o.local_damping = 0.0;
-  o.damping_ratio = 0.5;
+  o.sim.gravity = Vec3(0, 0, -9.81 * 100);
+  o.sim.local_damping = 0.0;
+  o.sim.damping_ratio = 0.5;
   Simulation sim = make_bed(o);
   while (sim.time() < 0.025) sim.step();
   sim.set_gravity(Vec3(0, 0, -9.81 * 20));

@@ -80,9 +80,9 @@ void ContactLawBed(benchmark::State& state) {
   o.centres = settled_dense_bed(true).balls().position;
   o.friction = 0.5;
   o.rubber_base = false;
-  o.contact_law = std::string(contact_law_name(static_cast<int>(state.range(0))));
-  o.simd_lanes = state.range(1) == 1 ? -1 : 0;
-  o.fixed_dt = 0.7e-6;
+  o.sim.contact_law = std::string(contact_law_name(static_cast<int>(state.range(0))));
+  o.sim.simd_lanes = state.range(1) == 1 ? -1 : 0;
+  o.sim.fixed_dt = 0.7e-6;
   Simulation sim = make_bed(o);
   sim.run(3000);
   const long steps_per_iteration = 200;

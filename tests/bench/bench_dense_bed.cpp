@@ -66,10 +66,10 @@ void EnergyDrift(benchmark::State& state) {
     BedOptions o;
     o.count = 300;
     o.friction = 0.5;
-    o.local_damping = 0.0;
+    o.sim.local_damping = 0.0;
     o.rubber_base = false;
-    o.gravity = Vec3(0, 0, -98.1);
-    o.dt_safety = safety;
+    o.sim.gravity = Vec3(0, 0, -98.1);
+    o.sim.dt_safety = safety;
     Simulation sim = make_bed(o);
     while (sim.time() < 0.05) sim.step();
     const EnergyBudget e = sim.energy();

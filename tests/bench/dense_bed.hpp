@@ -13,9 +13,9 @@ inline Simulation pour_dense_bed(bool spatial_order) {
   o.rubber_base = false;
   // Fast pour: 20 g, no local damping (it slows free fall to 0.3 g), inelastic
   // contacts. Then the benchmark conditions.
-  o.gravity = Vec3(0, 0, -9.81 * 20);
-  o.local_damping = 0.0;
-  o.damping_ratio = 0.5;
+  o.sim.gravity = Vec3(0, 0, -9.81 * 20);
+  o.sim.local_damping = 0.0;
+  o.sim.damping_ratio = 0.5;
   Simulation sim = make_bed(o);
   while (sim.time() < 0.12) sim.step();
   sim.set_gravity(Vec3(0, 0, -9.81));
