@@ -40,16 +40,10 @@ void print(std::ostream* log, const StageReport& r, const Simulation& sim) {
 }
 
 SimulationSettings settings_for(const BoxTestScene& s, double bound) {
-  SimulationSettings st;
+  SimulationSettings st = s.sim;
   st.domain_lo = -Vec3::Constant(2.0 * bound);
   st.domain_hi = Vec3(s.length, s.width, 2.0 * s.height) + Vec3::Constant(2.0 * bound);
   st.gravity = Vec3::Zero();
-  st.local_damping = s.local_damping;
-  st.dt_safety = s.dt_safety;
-  st.fixed_dt = s.fixed_dt;
-  st.rotation = s.rotation;
-  st.adaptive_rebuild = s.adaptive_rebuild;
-  st.contact_law = s.contact_law;
   return st;
 }
 
@@ -342,7 +336,7 @@ PreparedBed generate_sample(const BoxTestScene& s, std::ostream* log) {
     if (log)
       *log << "stage 2: " << s.count << " clumps of " << s.shape << " (" << balls
            << " balls, mass mode " << mass_mode_name(s.mass_mode) << ", rotation "
-           << rotation_integrator_name(s.rotation) << ", mean volume "
+           << rotation_integrator_name(s.sim.rotation) << ", mean volume "
            << particle_volume / sphere_volume << " x the nominal sphere's) replace the spheres\n";
     out.stages.push_back(
         grow(sim, "clumps", 1.0 / p.virtual_sphere_factor, s.expansion_speed, log));
@@ -423,7 +417,7 @@ PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
     out.stages.push_back(
         settle(sim, "settle", s.equilibrium_ratio, s.max_stage_steps, log, SettleRule::kKinetic));
     sim.set_damping_ratio(0.0);
-    sim.set_local_damping(s.local_damping);
+    sim.set_local_damping(s.sim.local_damping);
   }
   out.sim.set_all_friction(s.friction_compaction);
   if (s.stop_after == "prepare") {

@@ -34,7 +34,7 @@ void refuse_with_file(const nlohmann::json& object, const char* key, const std::
 // <entity>_<parameter> for every parameter of every law (ball_kn, ball_young_modulus,
 // ...), so that a study may switch the law without rewriting the materials.
 void read_contact_materials(JsonFields& m, BoxTestScene& s) {
-  m.text("contact_law", s.contact_law, "one of: " + contact_law_names(),
+  m.text("contact_law", s.sim.contact_law, "one of: " + contact_law_names(),
          [](const std::string& v) { return contact_law_index(v) >= 0; });
   const std::pair<const char*, Material*> entities[] = {
       {"ball", &s.ball}, {"wall", &s.wall}, {"base", &s.base}};
@@ -141,16 +141,16 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& j, const std::string& sc
   m.finish();
 
   JsonFields n(top.object("numerics"), "/numerics");
-  n.number("dt_safety", s.dt_safety, "in (0, 1]", [](double v) { return v > 0.0 && v <= 1.0; });
+  n.number("dt_safety", s.sim.dt_safety, "in (0, 1]", [](double v) { return v > 0.0 && v <= 1.0; });
   double dt = 0.0;
-  if (n.number("dt", dt, "> 0 s", positive)) s.fixed_dt = dt;
-  n.number("local_damping", s.local_damping, "in [0, 1)",
+  if (n.number("dt", dt, "> 0 s", positive)) s.sim.fixed_dt = dt;
+  n.number("local_damping", s.sim.local_damping, "in [0, 1)",
            [](double v) { return v >= 0.0 && v < 1.0; });
-  std::string rotation = rotation_integrator_name(s.rotation);
+  std::string rotation = rotation_integrator_name(s.sim.rotation);
   n.text("rotation", rotation, "\"pfc\" or \"full\"",
          [](const std::string& v) { return v == "pfc" || v == "full"; });
-  s.rotation = parse_rotation_integrator(rotation);
-  n.boolean("adaptive_rebuild", s.adaptive_rebuild);
+  s.sim.rotation = parse_rotation_integrator(rotation);
+  n.boolean("adaptive_rebuild", s.sim.adaptive_rebuild);
   n.finish();
 
   JsonFields p(top.object("preparation"), "/preparation");

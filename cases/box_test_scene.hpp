@@ -11,6 +11,7 @@
 #include "engine/clump_generator.hpp"
 #include "engine/clump_mass.hpp"
 #include "engine/rigid_rotation.hpp"
+#include "engine/simulation.hpp"
 
 namespace ballast {
 
@@ -31,24 +32,20 @@ struct BoxTestScene {
   double mass_accuracy = 0.005;           // uniform mode only
   // box, m
   double length = box_test::kLength, width = box_test::kWidth, height = box_test::kHeight;
-  // materials: the contact law (engine/contact_laws.hpp) and what each entity brings
-  // to a contact; each law reads its own members (engine/material.hpp). Friction is
-  // set per stage from the two coefficients below, not from these.
-  std::string contact_law = "linear";
+  // materials: what each entity brings to a contact under the contact law
+  // (sim.contact_law; each law reads its own members, engine/material.hpp). Friction
+  // is set per stage from the two coefficients below, not from these.
   Material ball = box_test::ballast_material(0.0);
   Material wall = box_test::wall_material(0.0);  // side walls and sleeper
   Material base = box_test::rubber_base(0.0);    // rubber base
   double density = box_test::kDensity;           // kg/m³
   double friction_compaction = box_test::kFrictionCompaction;
   double friction_loading = box_test::kFrictionLoading;
-  // numerics
-  double dt_safety = 0.8;
-  std::optional<double> fixed_dt;  // s; unset: dt = dt_safety × critical estimate
-  double local_damping = 0.7;
-  RotationIntegrator rotation = RotationIntegrator::kPfc;
-  // Neighbour builds also when they lower the mean cost per step (engine/rebuild_policy.hpp);
-  // false: only the half-skin rule (each build re-estimates dt).
-  bool adaptive_rebuild = true;
+  // The engine's settings the scene file sets: /numerics (dt_safety, dt as fixed_dt,
+  // local_damping, rotation, adaptive_rebuild) and /materials/contact_law, with the
+  // engine's defaults. Each stage's simulation starts from them and adds its domain
+  // and gravity (box_test_prepare.cpp, settings_for).
+  SimulationSettings sim;
   // preparation (PFC radius expansion, then gravity compaction)
   double initial_porosity = 0.5;      // of the grown spheres in their fill region (loose:
                                       // denser jams while growing and springs apart)

@@ -33,7 +33,7 @@ TEST(BoxTestScene, DefaultsAreThePapers) {
   EXPECT_DOUBLE_EQ(s.density, 2600.0);
   EXPECT_DOUBLE_EQ(s.friction_compaction, 0.3);
   EXPECT_DOUBLE_EQ(s.friction_loading, 0.5);
-  EXPECT_DOUBLE_EQ(s.local_damping, 0.7);
+  EXPECT_DOUBLE_EQ(s.sim.local_damping, 0.7);
   EXPECT_DOUBLE_EQ(s.preload, 3e3);
   EXPECT_DOUBLE_EQ(s.peak_load, 40e3);
   EXPECT_DOUBLE_EQ(s.frequency, 3.0);
@@ -119,10 +119,10 @@ TEST(BoxTestScene, SeedTakesAll64Bits) {
 
 // numerics/dt fixes the timestep; unset, the run takes dt_safety × the critical estimate.
 TEST(BoxTestScene, FixedTimestepIsOptionalAndPositive) {
-  EXPECT_FALSE(parse_box_test_scene(json::object()).fixed_dt.has_value());
+  EXPECT_FALSE(parse_box_test_scene(json::object()).sim.fixed_dt.has_value());
   const BoxTestScene s = parse_box_test_scene(json::parse(R"({"numerics": {"dt": 1e-6}})"));
-  ASSERT_TRUE(s.fixed_dt.has_value());
-  EXPECT_DOUBLE_EQ(*s.fixed_dt, 1e-6);
+  ASSERT_TRUE(s.sim.fixed_dt.has_value());
+  EXPECT_DOUBLE_EQ(*s.sim.fixed_dt, 1e-6);
   const std::string e = error_of(json::parse(R"({"numerics": {"dt": -1e-6}})"));
   EXPECT_NE(e.find("/numerics/dt"), std::string::npos) << e;
   EXPECT_NE(e.find("> 0 s"), std::string::npos) << e;

@@ -64,8 +64,8 @@ TEST(StudyScene, NumericsAndLoadingKeysLandOnTheirSceneKeys) {
   EXPECT_EQ(scene["particles"]["shape"], "table1/sample3");
   EXPECT_EQ(scene["particles"]["clump"]["c"], 0.4);
   const BoxTestScene b = parse_run_scene(scene, s.runs[0], "t.json", "s.json");
-  EXPECT_EQ(b.dt_safety, 0.4);
-  EXPECT_EQ(b.rotation, RotationIntegrator::kFull);
+  EXPECT_EQ(b.sim.dt_safety, 0.4);
+  EXPECT_EQ(b.sim.rotation, RotationIntegrator::kFull);
   EXPECT_EQ(b.mass_mode, MassMode::kUniform);
   EXPECT_EQ(b.cycles, 3);
 }
@@ -79,8 +79,8 @@ TEST(StudyScene, TheContactLawIsAFactorOfItsOwn) {
       parse_run_scene(run_scene_json(kBase, s.runs[0]), s.runs[0], "t.json", "s.json");
   const BoxTestScene hertz =
       parse_run_scene(run_scene_json(kBase, s.runs[1]), s.runs[1], "t.json", "s.json");
-  EXPECT_EQ(linear.contact_law, "linear");
-  EXPECT_EQ(hertz.contact_law, "hertz_mindlin");
+  EXPECT_EQ(linear.sim.contact_law, "linear");
+  EXPECT_EQ(hertz.sim.contact_law, "hertz_mindlin");
   EXPECT_GT(hertz.ball.young_modulus, 0.0);
   test_support::expect_error([] { expand(R"({"axes": {"contact_law": ["hertz"]}})"); },
                              {"contact_law", "\"hertz\"", "\"linear\" or \"hertz_mindlin\""});
