@@ -3,6 +3,7 @@
 // full; the scene's own refusals with the run named; shards; jobs x threads.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 #include "cases/clump_presets.hpp"
@@ -48,6 +49,44 @@ TEST(StudyScene, EveryStudyKeyHasASceneKey) {
   for (const SceneKey& k : scene_keys()) mapped.insert(std::string(k.study_key));
   for (const StudyKey& k : study_keys()) EXPECT_TRUE(mapped.count(std::string(k.name))) << k.name;
   EXPECT_EQ(mapped.size(), study_keys().size());
+}
+
+// A study key's range and its scene key's must agree at every finite bound: a
+// closed bound the study allows, the scene allows; just past a bound both refuse; a
+// key the study leaves unbounded above, the scene takes up to a million (the study's
+// gravity_factor >= 1 against the scene's [1, 1000] fails here). The count is left
+// out: the scene bounds it by the box's size, not by a number.
+TEST(StudyScene, StudyAndSceneRangesAgreeAtTheirBounds) {
+  const auto scene_allows = [](const SceneKey& key, double v) {
+    json scene = kBase;
+    scene["particles"] = {{"shape", "spheres"}, {"count", 40}};
+    json value = v;
+    if (find_study_key(key.study_key)->kind == KeyKind::kInteger) value = std::llround(v);
+    scene[json::json_pointer(std::string(key.scene_pointer))] = value;
+    try {
+      parse_box_test_scene(scene);
+      return true;
+    } catch (const SetupError&) {
+      return false;
+    }
+  };
+  for (const SceneKey& key : scene_keys()) {
+    const StudyKey* k = find_study_key(key.study_key);
+    if (k->group == "clump" || k->name == "count" || k->range.lo == -INFINITY) continue;
+    if (k->kind != KeyKind::kNumber && k->kind != KeyKind::kInteger) continue;
+    SCOPED_TRACE(std::string(k->name));
+    const KeyRange& r = k->range;
+    const double step = k->kind == KeyKind::kInteger ? 1.0 : 1e-9 * std::max(1.0, std::abs(r.lo));
+    if (!r.lo_open) EXPECT_TRUE(scene_allows(key, r.lo));
+    EXPECT_FALSE(scene_allows(key, r.lo - (r.lo_open ? 0.0 : step)));
+    if (r.hi == INFINITY) {  // unbounded above: the scene too, as far as a million
+      EXPECT_TRUE(scene_allows(key, 1e6));
+      continue;
+    }
+    const double hi_step = k->kind == KeyKind::kInteger ? 1.0 : 1e-9 * std::max(1.0, r.hi);
+    if (!r.hi_open) EXPECT_TRUE(scene_allows(key, r.hi));
+    EXPECT_FALSE(scene_allows(key, r.hi + (r.hi_open ? 0.0 : hi_step)));
+  }
 }
 
 TEST(StudyScene, NumericsAndLoadingKeysLandOnTheirSceneKeys) {
