@@ -6,9 +6,11 @@
 
 namespace ballast {
 
-void read_clump_overrides(JsonFields& fields, ClumpParams& q) {
+namespace {
+
+void read_fields(JsonFields& fields, ClumpParams& q, bool overridable_only) {
   for (const ClumpParamField& f : clump_param_fields()) {
-    if (!f.overridable) continue;
+    if (overridable_only && !f.overridable) continue;
     const std::string key(f.name);
     const std::string allowed = f.allowed();
     switch (f.kind) {
@@ -33,6 +35,16 @@ void read_clump_overrides(JsonFields& fields, ClumpParams& q) {
       }
     }
   }
+}
+
+}  // namespace
+
+void read_clump_overrides(JsonFields& fields, ClumpParams& q) {
+  read_fields(fields, q, true);
+}
+
+void read_clump_params(JsonFields& fields, ClumpParams& q) {
+  read_fields(fields, q, false);
 }
 
 void apply_clump_overrides(const nlohmann::json& params, const std::string& path, ClumpParams& q) {

@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cases/clump_overrides.hpp"
+#include "cases/json_fields.hpp"
 #include "engine/clump_mass.hpp"
 #include "engine/clump_param_table.hpp"
 #include "engine/errors.hpp"
@@ -27,30 +29,6 @@ bool is_documentation(const std::string& key) {
   };
   return key == "source" || key == "description" || key == "notes" || ends_with("_source") ||
          ends_with("_note");
-}
-
-double number(const json& j, const char* key, const std::string& origin) {
-  const json& v = j.at(key);
-  if (!v.is_number()) {
-    fail(origin, std::string("field '") + key + "' = " + v.dump() + " is not a number");
-  }
-  return v.get<double>();
-}
-
-int integer(const json& j, const char* key, const std::string& origin) {
-  const json& v = j.at(key);
-  if (!v.is_number_integer()) {
-    fail(origin, std::string("field '") + key + "' = " + v.dump() + " is not an integer");
-  }
-  return v.get<int>();
-}
-
-std::string text(const json& j, const char* key, const std::string& origin) {
-  const json& v = j.at(key);
-  if (!v.is_string()) {
-    fail(origin, std::string("field '") + key + "' = " + v.dump() + " is not a string");
-  }
-  return v.get<std::string>();
 }
 
 std::string read_file(const std::string& path, const std::string& what) {
@@ -132,36 +110,33 @@ ClumpPreset parse_clump_preset(std::string_view json_text, const std::string& or
 
   ClumpPreset p;
   ClumpParams& q = p.params;
-  if (j.contains("source")) p.source = text(j, "source", origin);
-  if (j.contains("description")) p.description = text(j, "description", origin);
+  const auto positive = [](double v) { return v > 0.0; };
   try {
-    for (const ClumpParamField& f : clump_param_fields()) {
-      const std::string key(f.name);
-      if (!j.contains(key)) continue;
-      if (f.kind == ClumpParamKind::kInteger) f.set(q, integer(j, key.c_str(), origin));
-      if (f.kind == ClumpParamKind::kNumber) f.set(q, number(j, key.c_str(), origin));
-      if (f.kind == ClumpParamKind::kChoice) f.set_text(q, text(j, key.c_str(), origin));
+    // One reader for the file's fields (cases/json_fields.hpp): the clump parameters
+    // through the table, each checked against its range where it is read.
+    JsonFields fields(j, "");
+    const auto any_text = [](const std::string&) { return true; };
+    fields.text("source", p.source, "a string", any_text);
+    fields.text("description", p.description, "a string", any_text);
+    read_clump_params(fields, q);
+    fields.number("density", p.density, "> 0 kg/m^3", positive);
+    if (j.contains("paper")) {
+      JsonFields paper(fields.object("paper"), "/paper");
+      long clumps = 0, balls = 0;
+      const bool both = paper.integer("clumps", clumps, "> 0", [](long v) {
+        return v > 0;
+      }) && paper.integer("balls", balls, ">= /paper/clumps", [&](long v) { return v >= clumps; });
+      if (!both) throw SetupError("invalid /paper (allowed: {\"clumps\": int, \"balls\": int})");
+      paper.finish();
+      p.paper_clumps = static_cast<int>(clumps);
+      p.paper_balls = static_cast<int>(balls);
     }
-    if (j.contains("density")) p.density = number(j, "density", origin);
     validate_clump_params(q);
     ClumpMassOptions mass;
     mass.density = p.density;
     validate_mass_options(mass);
   } catch (const SetupError& e) {
-    if (std::string(e.what()).rfind(origin, 0) == 0) throw;
     fail(origin, e.what());
-  }
-  if (j.contains("paper")) {
-    const json& paper = j.at("paper");
-    if (!paper.is_object() || !paper.contains("clumps") || !paper.contains("balls")) {
-      fail(origin, "field 'paper' = " + paper.dump() +
-                       " is not an object {\"clumps\": int, \"balls\": int}");
-    }
-    p.paper_clumps = integer(paper, "clumps", origin);
-    p.paper_balls = integer(paper, "balls", origin);
-    if (*p.paper_clumps <= 0 || *p.paper_balls < *p.paper_clumps) {
-      fail(origin, "field 'paper' = " + paper.dump() + " needs clumps > 0 and balls >= clumps");
-    }
   }
   return p;
 }

@@ -436,15 +436,17 @@ TEST(ClumpPresets, BadFieldsAreRejectedNamingTheField) {
       R"("directions": 6, "balls_per_direction": 2, "c": 0.2, "d3": 0.2, "edge_balls": 1, )"
       R"("virtual_sphere_factor": 1.26)";
   EXPECT_NO_THROW(parse_clump_preset("{" + base + R"(, "p": 0.5})", "test.json"));
-  expect_parse_error("{" + base + R"(, "p": 1.5})", "'p' = 1.5");
-  expect_parse_error("{" + base + R"(, "p": "half"})", "'p'");
+  expect_parse_error("{" + base + R"(, "p": 1.5})", "/p = 1.5 (allowed: a number in [0, 1])");
+  expect_parse_error("{" + base + R"(, "p": "half"})", "/p = \"half\"");
   expect_parse_error("{" + base + R"(, "p": 0.5, "pp": 0.5})", "unknown field 'pp'");
   expect_parse_error("{" + base + "}", "missing field 'p'");
-  expect_parse_error("{" + base + R"(, "p": 0.5, "adjacency": "ring"})", "'adjacency'");
-  expect_parse_error("{" + base + R"(, "p": 0.5, "density": -1})", "'density'");
+  expect_parse_error("{" + base + R"(, "p": 0.5, "adjacency": "ring"})", "/adjacency = \"ring\"");
+  expect_parse_error("{" + base + R"(, "p": 0.5, "density": -1})", "/density = -1");
   expect_parse_error(R"({"directions": 6.5, "p": 0.5, "balls_per_direction": 2, "c": 0.2, )"
                      R"("d3": 0.2, "edge_balls": 1, "virtual_sphere_factor": 1.26})",
-                     "'directions'");
+                     "/directions = 6.5");
+  expect_parse_error("{" + base + R"(, "p": 0.5, "paper": {"clumps": 10, "balls": 5}})",
+                     "/paper/balls = 5");
   expect_parse_error("[1, 2]", "object");
   expect_parse_error("{ not json", "JSON");
 }
