@@ -71,8 +71,8 @@ class ClumpCommand(unittest.TestCase):
                 json.dump(params, f)
             r = ballast("clump", "--params", path, "--count", "1")
         self.assertNotEqual(r.returncode, 0)
-        self.assertIn("'p'", r.stderr)
-        self.assertIn("1.5", r.stderr)
+        self.assertIn("bad.json: invalid /p = 1.5", r.stderr)
+        self.assertIn("in [0, 1]", r.stderr)
 
 
 class DemoCommand(unittest.TestCase):
