@@ -77,14 +77,18 @@ TEST(StudyScene, StudyAndSceneRangesAgreeAtTheirBounds) {
     SCOPED_TRACE(std::string(k->name));
     const KeyRange& r = k->range;
     const double step = k->kind == KeyKind::kInteger ? 1.0 : 1e-9 * std::max(1.0, std::abs(r.lo));
-    if (!r.lo_open) EXPECT_TRUE(scene_allows(key, r.lo));
+    if (!r.lo_open) {
+      EXPECT_TRUE(scene_allows(key, r.lo));
+    }
     EXPECT_FALSE(scene_allows(key, r.lo - (r.lo_open ? 0.0 : step)));
     if (r.hi == INFINITY) {  // unbounded above: the scene too, as far as a million
       EXPECT_TRUE(scene_allows(key, 1e6));
       continue;
     }
     const double hi_step = k->kind == KeyKind::kInteger ? 1.0 : 1e-9 * std::max(1.0, r.hi);
-    if (!r.hi_open) EXPECT_TRUE(scene_allows(key, r.hi));
+    if (!r.hi_open) {
+      EXPECT_TRUE(scene_allows(key, r.hi));
+    }
     EXPECT_FALSE(scene_allows(key, r.hi + (r.hi_open ? 0.0 : hi_step)));
   }
 }
