@@ -84,9 +84,9 @@ std::vector<std::string> split_choices(std::string_view choices) {
 
 bool ClumpParamField::allows(double x) const {
   if (kind == ClumpParamKind::kChoice) return false;
-  if (!choices.empty()) {
+  if (!choices.empty()) {  // integers allowed by value: "6|14"
     for (const std::string& c : split_choices(choices))
-      if (c == format(x)) return true;
+      if (std::stod(c) == x) return true;
     return false;
   }
   if (std::isnan(x)) return false;

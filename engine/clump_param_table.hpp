@@ -42,7 +42,8 @@ struct ClumpParamField {
   bool allows_text(std::string_view name) const;  // kChoice: one of `choices`
   // "in [0, 1]", ">= 0", "6 or 14", "\"hull\" or \"face_to_diagonal\"".
   std::string allowed() const;
-  // kInteger, kNumber: the member's value; kChoice: its index in `choices`.
+  // kInteger, kNumber: the member's value; kChoice: the enum's value (its position in
+  // `choices`).
   double value(const ClumpParams& q) const;
   // kInteger, kNumber: sets the member (no range check: validate_clump_params does).
   void set(ClumpParams& q, double x) const;

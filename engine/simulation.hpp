@@ -195,9 +195,11 @@ class Simulation {
   void schedule_rebuild(double wall_shift2, bool lists_remade);
   // Both, then the largest squared wall move since the last build (m²).
   double move_walls();
-  // Normal tangent stiffness of wall contact c (ball `ball` on wall w) at the normal
-  // force of the last force pass, N/m: what the servo divides by.
-  double wall_contact_stiffness(Index c, Index ball, Index w) const;
+  // Adds servo s's wall contacts' normal tangent stiffnesses (N/m, at the normal
+  // force of the last force pass) and their normal dashpots (N·s/m): what the servo
+  // law divides by. One instantiation per contact law.
+  template <class Law>
+  void servo_contact_sums(const Servo& s, double& stiffness, double& dashpots) const;
   bool scene_has_friction() const;
   void refresh_friction_state();
 

@@ -60,13 +60,23 @@ void Simulation::sum_wall_forces(std::vector<Vec3>& force) const {
   for (Index c = 0; c < wall_contacts_.size(); ++c) force[wall[c]] += wrench[c].force;
 }
 
-double Simulation::wall_contact_stiffness(Index c, Index ball, Index w) const {
-  const PairProperties& p = pairs_.wall(balls_.material[ball], w);
-  const double r = balls_.radius[ball];
-  return with_contact_law(law_, [&](auto law) {
-    using Law = decltype(law);
-    return Law::stiffness(p, r, Law::overlap_at(p, r, wall_contacts_.normal_force[c])).kn;
-  });
+template <class Law>
+void Simulation::servo_contact_sums(const Servo& s, double& stiffness, double& dashpots) const {
+  const double beta = settings_.damping_ratio;
+  for (Index c = 0; c < wall_contacts_.size(); ++c) {
+    if (!wall_contacts_.active[c]) continue;
+    for (Index w : s.walls)
+      if (wall_contacts_.b[c] == w) {
+        // The contact's normal tangent stiffness at the force of the last pass.
+        const Index ball = wall_contacts_.a[c];
+        const PairProperties& p = pairs_.wall(balls_.material[ball], w);
+        const double r = balls_.radius[ball];
+        const double kn =
+            Law::stiffness(p, r, Law::overlap_at(p, r, wall_contacts_.normal_force[c])).kn;
+        stiffness += kn;
+        if (beta > 0.0) dashpots += dashpot_coefficient(beta, bodies_.mass[balls_.body[ball]], kn);
+      }
+  }
 }
 
 void Simulation::drive_walls() {
@@ -78,19 +88,9 @@ void Simulation::drive_walls() {
     // levelling plate on a bed settling with dashpots (β = 0.3) chattered at its
     // speed cap (tests/test_servo_law.cpp, DashpotOnTheContact...).
     double measured = 0.0, stiffness = 0.0, dashpots = 0.0;
-    const double beta = settings_.damping_ratio;
     for (Index w : s.walls) measured -= wall_force_[w].dot(s.axis);
-    for (Index c = 0; c < wall_contacts_.size(); ++c) {
-      if (!wall_contacts_.active[c]) continue;
-      for (Index w : s.walls)
-        if (wall_contacts_.b[c] == w) {
-          const Index ball = wall_contacts_.a[c];
-          const double kn = wall_contact_stiffness(c, ball, w);
-          stiffness += kn;
-          if (beta > 0.0)
-            dashpots += dashpot_coefficient(beta, bodies_.mass[balls_.body[ball]], kn);
-        }
-    }
+    with_contact_law(law_,
+                     [&](auto law) { servo_contact_sums<decltype(law)>(s, stiffness, dashpots); });
     s.measured_force = measured;
     s.target_now = s.target_force(time_);
     const double error = s.target_now - measured;

@@ -44,10 +44,11 @@ Stiffness body_stiffness(Index body, const BallStore& balls, const BodyStore& bo
       const Vec3 d = px - balls.position[other];
       const double reach = r + balls.radius[other];
       if (d.squaredNorm() >= reach * reach) return;
-      const Vec3 n = d.normalized();
+      const double dist = d.norm();
+      const Vec3 n = dist > 0.0 ? Vec3(d / dist) : d;  // Eigen's normalized(), to the bit
       const double ro = balls.radius[other];
       const ContactStiffness kc = Law::stiffness(Law::mix(m, materials[balls.material[other]]),
-                                                 r * ro / (r + ro), reach - d.norm());
+                                                 r * ro / (r + ro), reach - dist);
       k.add(kc.kn, kc.ks, (px - x) - r * n, n);
     };
     for (Index c = bc.a_first[ball]; c < bc.a_first[ball + 1]; ++c) add_ball(bc.b[c]);

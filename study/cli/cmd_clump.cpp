@@ -8,6 +8,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "cases/clump_presets.hpp"
@@ -82,6 +83,12 @@ struct ClumpReport {
   double seconds;         // s, generation and measurement
   double expected;        // balls per clump, 1 + p N n + p^2 E m
   double standard_error;  // of the measured mean ball count
+
+  // The paper's balls per clump for the sample, where the preset gives its counts.
+  std::optional<double> paper_balls_per_clump() const {
+    if (!preset.paper_clumps) return std::nullopt;
+    return static_cast<double>(*preset.paper_balls) / *preset.paper_clumps;
+  }
 };
 
 void print_clump_json(const ClumpReport& c) {
@@ -89,9 +96,7 @@ void print_clump_json(const ClumpReport& c) {
   const ClumpParams& q = preset.params;
   const ClumpMassOptions& mass = c.mass;
   const ClumpCommandOptions& o = c.o;
-  const bool has_paper = preset.paper_clumps.has_value();
-  const double paper_mean =
-      has_paper ? static_cast<double>(*preset.paper_balls) / *preset.paper_clumps : 0.0;
+  const std::optional<double> paper_mean = c.paper_balls_per_clump();
   nlohmann::ordered_json j;
   j["preset"] = preset.name;
   j["source"] = preset.source;
@@ -114,10 +119,10 @@ void print_clump_json(const ClumpReport& c) {
   j["seconds"] = c.seconds;
   j["expected_balls_per_clump"] = c.expected;
   j["balls_per_clump_standard_error"] = c.standard_error;
-  if (has_paper) {
+  if (paper_mean) {
     j["paper"] = {{"clumps", *preset.paper_clumps},
                   {"balls", *preset.paper_balls},
-                  {"balls_per_clump", paper_mean}};
+                  {"balls_per_clump", *paper_mean}};
   }
   for (const Row& r : c.rows) {
     j["statistics"][r.key] = {
@@ -131,9 +136,7 @@ void print_clump_text(const ClumpReport& c) {
   const ClumpParams& q = preset.params;
   const ClumpMassOptions& mass = c.mass;
   const ClumpCommandOptions& o = c.o;
-  const bool has_paper = preset.paper_clumps.has_value();
-  const double paper_mean =
-      has_paper ? static_cast<double>(*preset.paper_balls) / *preset.paper_clumps : 0.0;
+  const std::optional<double> paper_mean = c.paper_balls_per_clump();
   std::printf("clumps: %s%s%s\n", preset.name.c_str(), preset.source.empty() ? "" : " - ",
               preset.source.c_str());
   std::printf(
@@ -165,8 +168,8 @@ void print_clump_text(const ClumpReport& c) {
       "\n  balls per clump: measured %.3f +- %.3f (standard error), expected %.3f "
       "(1 + p N n + p^2 E m)",
       c.summary.balls.mean, c.standard_error, c.expected);
-  if (has_paper) {
-    std::printf(", paper %.3f (%d balls / %d clumps)", paper_mean, *preset.paper_balls,
+  if (paper_mean) {
+    std::printf(", paper %.3f (%d balls / %d clumps)", *paper_mean, *preset.paper_balls,
                 *preset.paper_clumps);
   }
   std::printf("\n");
