@@ -8,6 +8,7 @@
 #include "cases/clump_overrides.hpp"
 #include "cases/clump_presets.hpp"
 #include "cases/json_fields.hpp"
+#include "cases/scene_bounds.hpp"
 #include "engine/contact_laws.hpp"
 
 namespace ballast {
@@ -96,28 +97,6 @@ void read_particles(const nlohmann::json& j, BoxTestScene& s, const std::string&
   s.clumps = p;
 }
 
-// A generated sample must make a bed in its box: particles smaller than the box, and
-// a count that fills the floor at least one diameter deep, loose, and at most 1.8 box
-// heights (generate_sample in box_test_prepare.cpp checks the latter again with the
-// clumps' own volume, never below the sphere's used here). Checked while parsing, so
-// that --dry-run refuses what the run would.
-void check_generated_bed(const BoxTestScene& s) {
-  const double d = s.diameter;
-  const double smallest = std::min({s.length, s.width, s.height});
-  require_setup(d < smallest, "/particles/diameter", d,
-                "< the box's smallest side, " + std::to_string(smallest) + " m");
-  const double solid = s.count * kPi * d * d * d / 6.0;
-  const double floor_area = s.length * s.width;
-  const double depth = solid / ((1.0 - s.initial_porosity) * floor_area);
-  require_setup(depth >= d, "/box/length x /box/width", floor_area,
-                "a floor that /particles/count = " + std::to_string(s.count) +
-                    " fills at least one diameter deep at the initial porosity: at most " +
-                    std::to_string(solid / ((1.0 - s.initial_porosity) * d)) + " m^2");
-  require_setup(depth <= 1.8 * s.height, "/particles/count", s.count,
-                "few enough to fill at most 1.8 box heights at the initial porosity (needs " +
-                    std::to_string(depth) + " m, box height " + std::to_string(s.height) + " m)");
-}
-
 }  // namespace
 
 BoxTestScene parse_box_test_scene(const nlohmann::json& j, const std::string& scene_dir) {
@@ -196,6 +175,8 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& j, const std::string& sc
   me.finish();
   top.finish();
   if (s.packing_file.empty()) check_generated_bed(s);
+  check_loading_bounds(s, s.packing_file.empty());
+  check_measurement_bounds(s);
   return s;
 }
 

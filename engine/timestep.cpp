@@ -119,4 +119,14 @@ TimestepEstimate estimate_critical_timestep(const BallStore& balls, const BodySt
   return best;
 }
 
+double lone_sphere_timestep(const Material& m, double radius, double density, int law,
+                            double max_speed) {
+  const double mass = density * 4.0 / 3.0 * kPi * radius * radius * radius;
+  const ContactStiffness k = with_contact_law(
+      law, [&](auto l) { return decltype(l)::floor_stiffness(m, radius, mass, max_speed); });
+  // The floor contact's lever arm is the radius along its normal: kn has no moment,
+  // ks·r² does, and I = (2/5)·m·r², so ω² = (kn + ks)/m + ks·r²/I = (kn + 3.5·ks)/m.
+  return 1.0 / std::sqrt((k.kn + 3.5 * k.ks) / mass);
+}
+
 }  // namespace ballast

@@ -37,4 +37,11 @@ TimestepEstimate estimate_critical_timestep(const BallStore& balls, const BodySt
                                             const ContactList& wall_contacts, double damping_ratio,
                                             int law, double max_speed);
 
+// The same estimate for one sphere of `radius` (m) and `density` (kg/m³) with its one
+// floor contact, before any body exists: what a scene can know up front. A bed only
+// adds contacts, so its estimate is at most this (cases/scene_bounds.cpp bounds a
+// scene's steps with it). Infinite or zero where the material makes no sense.
+double lone_sphere_timestep(const Material& m, double radius, double density, int law,
+                            double max_speed);
+
 }  // namespace ballast

@@ -3,6 +3,7 @@
 // its JSON path, the value and what is allowed.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "cases/box_test_scene.hpp"
@@ -126,4 +127,51 @@ TEST(BoxTestScene, FixedTimestepIsOptionalAndPositive) {
   const std::string e = error_of(json::parse(R"({"numerics": {"dt": -1e-6}})"));
   EXPECT_NE(e.find("/numerics/dt"), std::string::npos) << e;
   EXPECT_NE(e.find("> 0 s"), std::string::npos) << e;
+}
+
+// Loading a run could only refuse hours in is refused while parsing
+// (cases/scene_bounds.cpp), each bound at its value for the paper's materials.
+TEST(BoxTestScene, LoadingBoundsFollowTheBallMaterial) {
+  // The whole peak load on one ball-sleeper contact at an overlap of a radius: the
+  // paper's kn = 5.08e9 N/m for ball and sleeper in series, 2.54e9 N/m, times
+  // 18.125 mm is 4.60e7 N.
+  const double carried = 2.54e9 * 0.018125;
+  EXPECT_EQ(error_of({{"sleeper", {{"peak_load", 0.99 * carried}}}}), "(accepted)");
+  const std::string load = error_of({{"sleeper", {{"peak_load", 1.01 * carried}}}});
+  EXPECT_NE(load.find("/sleeper/peak_load"), std::string::npos) << load;
+  EXPECT_NE(load.find("at most 4.6e+07 N"), std::string::npos) << load;
+  // A cycle of at least 20 steps of 0.8 x the lone sphere's timestep: m = 2600 kg/m3
+  // x pi d3/6 = 0.0649 kg, floor kn = ks = 2.54e9 N/m, w2 = 4.5 kn/m.
+  const double m = 2600.0 * kPi * std::pow(0.03625, 3) / 6.0;
+  const double dt = 0.8 / std::sqrt(4.5 * 2.54e9 / m);
+  const double fastest = 1.0 / (20.0 * dt);
+  EXPECT_EQ(error_of({{"sleeper", {{"frequency", 0.99 * fastest}}}}), "(accepted)");
+  const std::string fast = error_of({{"sleeper", {{"frequency", 1.01 * fastest}}}});
+  EXPECT_NE(fast.find("/sleeper/frequency"), std::string::npos) << fast;
+  // At most 1e12 steps: at 3 Hz that is 1e12 x 3 x dt cycles.
+  const long most = static_cast<long>(1e12 * 3.0 * dt);
+  EXPECT_EQ(error_of({{"sleeper", {{"cycles", long(0.99 * most)}}}}), "(accepted)");
+  const std::string many = error_of({{"sleeper", {{"cycles", long(1.01 * most)}}}});
+  EXPECT_NE(many.find("/sleeper/cycles"), std::string::npos) << many;
+  // A density or stiffness that leaves no finite timestep.
+  const std::string light = error_of({{"materials", {{"density", 1e-300}}}});
+  EXPECT_NE(light.find("/materials/density"), std::string::npos) << light;
+  const std::string stiff = error_of({{"materials", {{"ball_stiffness", 1e308}}}});
+  EXPECT_NE(stiff.find("ball_stiffness"), std::string::npos) << stiff;
+  const std::string speed = error_of({{"sleeper", {{"max_speed", 101.0}}}});
+  EXPECT_NE(speed.find("/sleeper/max_speed"), std::string::npos) << speed;
+}
+
+TEST(BoxTestScene, MeasurementsFitTheColumnUnderTheSleeper) {
+  EXPECT_EQ(error_of({{"measurement", {{"cube_side", 0.25}}}}), "(accepted)");
+  const std::string wide = error_of({{"measurement", {{"cube_side", 0.26}}}});
+  EXPECT_NE(wide.find("/measurement/cube_side = 0.26"), std::string::npos) << wide;
+  // The column: 0.25 x 0.3 m, as deep as 1,936 spheres fill loose, 0.46 m capped by
+  // the box's 0.45 m; 1e8 cubes of it are 0.70 mm cubes.
+  const double smallest = std::cbrt(0.25 * 0.3 * 0.45 / 1e8);
+  EXPECT_EQ(error_of({{"measurement", {{"cube_side", 1.01 * smallest}}}}), "(accepted)");
+  const std::string fine = error_of({{"measurement", {{"cube_side", 0.99 * smallest}}}});
+  EXPECT_NE(fine.find("at least 0.000696 m"), std::string::npos) << fine;
+  const std::string deep = error_of({{"measurement", {{"zone_depth", 0.46}}}});
+  EXPECT_NE(deep.find("/measurement/zone_depth"), std::string::npos) << deep;
 }

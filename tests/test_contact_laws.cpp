@@ -18,6 +18,7 @@
 
 #include "cases/box_test.hpp"
 #include "engine/contact_laws.hpp"
+#include "engine/timestep.hpp"
 #include "test_helpers.hpp"
 
 using namespace ballast;
@@ -169,5 +170,23 @@ TEST(ContactLaws, ASphereSceneRunsItsOwnLaw) {
       EXPECT_NEAR(bc.normal_force[c], expected, 1e-9 * expected) << "contact " << c;
     }
     EXPECT_GT(touching, 10);
+  });
+}
+
+// What a scene estimates up front (lone_sphere_timestep, cases/scene_bounds.cpp) is
+// what the engine estimates for the same sphere alone: under every law, the bound a
+// scene puts on its steps is the engine's own number, not a second formula.
+TEST(ContactLaws, LoneSphereTimestepIsTheEnginesForOneFreeSphere) {
+  for_every_law([](auto law) {
+    using Law = decltype(law);
+    SimulationSettings s = scenes::bare_settings();
+    s.contact_law = std::string(Law::kName);
+    Simulation sim(s);
+    const double r = 0.018, rho = 2600.0;
+    sim.add_sphere(Vec3::Zero(), r, rho, sim.add_material(kBallast));
+    sim.prepare();
+    const double lone =
+        lone_sphere_timestep(kBallast, r, rho, contact_law_index(Law::kName), s.max_speed);
+    EXPECT_NEAR(lone, sim.critical_dt(), 1e-12 * lone);
   });
 }
