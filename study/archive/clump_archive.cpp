@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "engine/clump_param_table.hpp"
+#include "study/archive/file_image.hpp"
 #include "study/archive/hdf5_util.hpp"
 
 namespace ballast {
@@ -107,10 +108,9 @@ void write_clump_archive(const std::string& path, const ClumpArchiveHeader& h,
                          const std::vector<ClumpTemplate>& clumps,
                          const std::vector<ClumpShape>& shapes) {
   quiet_errors();
-  Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
-              "create '" + path + "'");
+  MemoryFile file(path);
   write_clump_sample(file, h, clumps, shapes);
-  check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush '" + path + "'");
+  file.save(path);
 }
 
 }  // namespace ballast

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "study/archive/clump_archive.hpp"
+#include "study/archive/file_image.hpp"
 #include "study/archive/hdf5_util.hpp"
 
 namespace ballast {
@@ -187,13 +188,15 @@ void write_box_test_result(hid_t run, const BoxTestResult& r) {
 void write_run_file(const std::string& path, const std::string& scene_json,
                     const BoxTestResult& r) {
   quiet_errors();
-  Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
-              "create " + path);
+  MemoryFile file(path);
   string_attribute(file, "format", "ballast-run");
   number_attribute(file, "version", 1L);
   string_attribute(file, "scene_json", scene_json);
-  Handle run = group(file, "run");
-  write_box_test_result(run, r);
+  {
+    Handle run = group(file, "run");
+    write_box_test_result(run, r);
+  }
+  file.save(path);
 }
 
 }  // namespace ballast

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "study/archive/file_image.hpp"
 #include "study/archive/hdf5_read.hpp"
 
 namespace ballast {
@@ -239,24 +240,36 @@ std::string StudyStore::write_part(const RunRecord& r) {
   char name[32];
   std::snprintf(name, sizeof name, "%06zu.h5", r.spec.index);
   const std::string part = (fs::path(parts_dir()) / name).string();
-  const std::string tmp = part + ".tmp";
+  MemoryFile file(part);
+  string_attribute(file, "format", kRunPartFormat);
+  number_attribute(file, "format_version", kStudyArchiveVersion);
+  string_attribute(file, "fingerprint", header_.fingerprint);
   {
-    Handle fapl = archive_file_access();
-    Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose,
-                "create " + tmp);
-    string_attribute(file, "format", kRunPartFormat);
-    number_attribute(file, "format_version", kStudyArchiveVersion);
-    string_attribute(file, "fingerprint", header_.fingerprint);
     Handle run = create_group(file, "run");
     write_run_group(run, r);
   }
-  sync_path(tmp);
-  fs::rename(tmp, part);
-  sync_path(parts_dir());
+  file.save(part);
   return part;
 }
 
 bool StudyStore::append_pending() {
+  const std::string waiting =
+      std::to_string(pending_.size()) + " finished runs wait in " + parts_dir();
+  // A disk that fills half-way through HDF5's writes leaves the archive damaged (resume
+  // rebuilds it from the parts, but that is a night's archive to rebuild): look for
+  // the room first, twice the parts' size for the copies and HDF5's own bookkeeping.
+  std::uintmax_t needed = std::uintmax_t(1) << 20;
+  std::error_code ec;
+  for (const std::string& part : pending_) needed += 2 * fs::file_size(part, ec);
+  const fs::path dir = fs::path(path_).parent_path();
+  const fs::space_info room = fs::space(dir.empty() ? fs::path(".") : dir, ec);
+  if (!ec && room.available < needed) {
+    append_problem_ = "no room to append to " + path_ + ": " +
+                      std::to_string(room.available >> 10) + " KiB free, about " +
+                      std::to_string(needed >> 10) + " KiB needed";
+    report_(append_problem_ + "; " + waiting);
+    return false;
+  }
   // A reader (h5py, h5dump) holding the archive open keeps HDF5's file lock: wait a
   // little for it, then leave the runs pending (they are safe in their parts).
   hid_t id = -1;
@@ -266,11 +279,24 @@ bool StudyStore::append_pending() {
     id = try_open(path_, H5F_ACC_RDWR, &why);
   }
   if (id < 0) {
-    report_("cannot open " + path_ + " to append (" + why +
-            "): " + std::to_string(pending_.size()) + " finished runs wait in " + parts_dir());
+    append_problem_ = "cannot open " + path_ + " to append (" + why + ")";
+    report_(append_problem_ + ": " + waiting);
     return false;
   }
-  Handle file(id, H5Fclose, "open " + path_);
+  try {
+    Handle file(id, H5Fclose, "open " + path_);
+    copy_pending(file);
+  } catch (const std::exception& e) {
+    append_problem_ = e.what();
+    report_(append_problem_ + ": " + waiting +
+            " (--resume appends them, and rebuilds the archive should this have damaged it)");
+    return false;
+  }
+  pending_.clear();
+  return true;
+}
+
+void StudyStore::copy_pending(hid_t file) {
   Handle runs(H5Gopen2(file, "runs", H5P_DEFAULT), H5Gclose, "open /runs in " + path_);
   if (has_link(runs, kIncoming))
     check(H5Ldelete(runs, kIncoming, H5P_DEFAULT), "remove a cut copy");
@@ -286,14 +312,19 @@ bool StudyStore::append_pending() {
           "name run " + run_id);
   }
   check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + path_);
-  pending_.clear();
-  return true;
 }
 
 void StudyStore::record(const RunRecord& r) {
   std::lock_guard<std::mutex> lock(mutex_);
   quiet_errors();  // this worker thread's HDF5 error setting
-  pending_.push_back(write_part(r));
+  try {
+    pending_.push_back(write_part(r));
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string(e.what()) + "; run " + r.spec.id +
+                             " is lost, every run finished before it is kept in " + path_ + " or " +
+                             parts_dir() +
+                             ": once that is mended, run the same command with --resume");
+  }
   recorded_[r.spec.id] = r.ok;
   revisions_[r.spec.id] = r.git_revision;
   append_pending();
@@ -304,8 +335,9 @@ void StudyStore::finish() {
   quiet_errors();
   if (!pending_.empty() && !append_pending()) {
     throw std::runtime_error(std::to_string(pending_.size()) + " finished runs could not be " +
-                             "appended to " + path_ + " (it stayed locked); they are safe in " +
-                             parts_dir() + ": run the same command with --resume to append them");
+                             "appended to " + path_ + " (" + append_problem_ +
+                             "); they are safe in " + parts_dir() +
+                             ": run the same command with --resume to append them");
   }
   sync_path(path_);
   fs::remove_all(parts_dir());

@@ -66,9 +66,12 @@ class StudyStore {
   std::string base_path() const { return parts_dir() + "/base.archive"; }
   std::string write_part(const RunRecord& record);
   // Appends the pending parts; a part whose run the archive holds with another
-  // `finished` time replaces it (parts are always the newer). Returns false if the
-  // archive could not be opened (locked by a reader): the parts stay pending.
+  // `finished` time replaces it (parts are always the newer). Returns false, the parts
+  // staying pending and `append_problem_` saying why, if the archive could not be
+  // opened (locked by a reader), its disk lacks the room, or a write failed.
   bool append_pending();
+  // Copies the pending parts into the open archive; throws on any HDF5 failure.
+  void copy_pending(hid_t file);
   void create_archive();
 
   std::string path_;
@@ -78,6 +81,7 @@ class StudyStore {
   std::map<std::string, bool> recorded_;
   std::map<std::string, std::string> revisions_;
   std::vector<std::string> pending_;  // part files not yet in the archive
+  std::string append_problem_;        // why the last append left them pending
 };
 
 }  // namespace ballast

@@ -17,6 +17,7 @@
 #include "engine/clump_shape.hpp"
 #include "study/archive/clump_archive.hpp"
 #include "study/cli/clump_vtk.hpp"
+#include "study/cli/output_paths.hpp"
 
 namespace ballast {
 namespace {
@@ -193,6 +194,8 @@ void run_clump_command(const ClumpCommandOptions& o) {
   if (o.threads > 0) omp_set_num_threads(o.threads);
 
   const ClumpParams& q = preset.params;
+  if (!o.output.empty()) check_writable_file("-o", o.output);
+  if (!o.vtk_dir.empty()) check_writable_directory("--vtk", o.vtk_dir);
   const auto start = std::chrono::steady_clock::now();
   const std::vector<ClumpTemplate> clumps =
       generate_clump_templates(q, mass, static_cast<std::size_t>(o.count), o.seed);

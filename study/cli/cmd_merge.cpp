@@ -10,6 +10,7 @@
 #include "study/archive/study_archive.hpp"
 #include "study/archive/study_summary.hpp"
 #include "study/cli/command_exit.hpp"
+#include "study/cli/output_paths.hpp"
 
 namespace ballast {
 
@@ -55,6 +56,7 @@ void merge(const MergeOptions& o) {
     throw ArchiveRefused(o.output + " already exists: give another -o or remove it yourself " +
                          "(nothing was changed)");
   }
+  check_writable_file("-o", o.output);
   std::vector<Input> inputs;
   for (const std::string& path : o.inputs) inputs.push_back(read_input(path));
   const StudyArchiveHeader& first = inputs.front().header;
@@ -85,20 +87,34 @@ void merge(const MergeOptions& o) {
   header.merged_from.clear();
   for (const Input& in : inputs) header.merged_from += in.path + "\n";
   const std::string tmp = o.output + ".tmp";
-  {
-    Handle fapl = archive_file_access();
-    Handle out(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose, "create " + tmp);
-    write_archive_header(out, header);
-    Handle runs = create_group(out, "runs");
-    for (const Input& in : inputs) {
-      Handle file(H5Fopen(in.path.c_str(), H5F_ACC_RDONLY, fapl), H5Fclose, "open " + in.path);
-      for (const ArchivedRun& run : in.runs) {
-        check(H5Ocopy(file, ("runs/" + run.id).c_str(), runs, run.id.c_str(), H5P_DEFAULT,
-                      H5P_DEFAULT),
-              "copy run " + run.id + " from " + in.path);
+  try {
+    {
+      Handle fapl = archive_file_access();
+      Handle out(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose,
+                 "create " + tmp);
+      write_archive_header(out, header);
+      Handle runs = create_group(out, "runs");
+      for (const Input& in : inputs) {
+        Handle file(H5Fopen(in.path.c_str(), H5F_ACC_RDONLY, fapl), H5Fclose, "open " + in.path);
+        for (const ArchivedRun& run : in.runs) {
+          check(H5Ocopy(file, ("runs/" + run.id).c_str(), runs, run.id.c_str(), H5P_DEFAULT,
+                        H5P_DEFAULT),
+                "copy run " + run.id + " from " + in.path);
+        }
       }
+      check(H5Fflush(out, H5F_SCOPE_GLOBAL), "flush " + tmp);
     }
-    check(H5Fflush(out, H5F_SCOPE_GLOBAL), "flush " + tmp);
+  } catch (const std::exception& e) {
+    // A full disk or a lost permission half-way: the inputs are untouched.
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    const fs::path dir = fs::path(o.output).parent_path();
+    const fs::space_info room = fs::space(dir.empty() ? fs::path(".") : dir, ec);
+    throw std::runtime_error(
+        std::string(e.what()) + " (" +
+        (ec ? ec.message() : std::to_string(room.available >> 10) + " KiB free there") +
+        "); nothing was written to " + o.output + " and the inputs are " +
+        "as they were: make room and merge again");
   }
   fs::rename(tmp, o.output);
 

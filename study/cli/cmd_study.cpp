@@ -1,9 +1,11 @@
 #include "study/cli/cmd_study.hpp"
 
+#include <filesystem>
 #include <memory>
 
 #include "engine/errors.hpp"
 #include "study/cli/command_exit.hpp"
+#include "study/cli/output_paths.hpp"
 #include "study/running/study_runner.hpp"
 
 namespace ballast {
@@ -35,6 +37,12 @@ void register_study_command(CLI::App& app) {
       throw SetupError(
           "missing -o ARCHIVE.h5 (allowed: -o with the archive to write, or "
           "--dry-run to check the study without running it)");
+    }
+    if (dry->count() == 0) {
+      // Before any run: an archive that cannot be written would lose every run.
+      const std::string folder = std::filesystem::path(o->output).parent_path().string();
+      if (!folder.empty()) check_writable_directory("-o", folder);
+      check_writable_file("-o", o->output);
     }
     const int code = run_study(*o);
     if (code != 0) throw CommandExit{code};
