@@ -54,9 +54,9 @@ TEST(StudyScene, EveryStudyKeyHasASceneKey) {
 // A study key's range and its scene key's must agree at every finite bound: a
 // closed bound the study allows, the scene allows; just past a bound both refuse; a
 // key the study leaves unbounded above, the scene takes up to a million (the study's
-// gravity_factor >= 1 against the scene's [1, 1000] fails here), or, for a fixed dt,
-// which the scene bounds by the load cycle (cases/scene_bounds.cpp: 20 steps a
-// cycle), up to a millisecond. The count is left out: the scene bounds it by the
+// gravity_factor >= 1 against the scene's [1, 1000] fails here), or, for a fixed dt
+// and the frequency, which the scene bounds together (cases/scene_bounds.cpp: 20
+// steps a cycle), up to a millisecond and 100 Hz. The count is left out: the scene bounds it by the
 // box's size, not by a number.
 TEST(StudyScene, StudyAndSceneRangesAgreeAtTheirBounds) {
   const auto scene_allows = [](const SceneKey& key, double v) {
@@ -84,7 +84,8 @@ TEST(StudyScene, StudyAndSceneRangesAgreeAtTheirBounds) {
     }
     EXPECT_FALSE(scene_allows(key, r.lo - (r.lo_open ? 0.0 : step)));
     if (r.hi == INFINITY) {  // unbounded above: the scene too, as far as a million
-      EXPECT_TRUE(scene_allows(key, k->name == "dt" ? 1e-3 : 1e6));
+      const double far = k->name == "dt" ? 1e-3 : k->name == "frequency" ? 100.0 : 1e6;
+      EXPECT_TRUE(scene_allows(key, far));
       continue;
     }
     const double hi_step = k->kind == KeyKind::kInteger ? 1.0 : 1e-9 * std::max(1.0, r.hi);
@@ -97,7 +98,8 @@ TEST(StudyScene, StudyAndSceneRangesAgreeAtTheirBounds) {
 
 TEST(StudyScene, NumericsAndLoadingKeysLandOnTheirSceneKeys) {
   const StudySpec s = expand(R"({"axes": {"dt_safety": [0.4], "rotation": ["full"],
-    "mass_mode": ["uniform"], "local_damping": [0.3], "gravity_factor": [20], "cycles": [3]}})");
+    "mass_mode": ["uniform"], "local_damping": [0.3], "gravity_factor": [20], "cycles": [3],
+    "frequency": [10]}})");
   const json scene = run_scene_json(kBase, s.runs[0]);
   EXPECT_EQ(scene["numerics"]["dt_safety"], 0.4);
   EXPECT_EQ(scene["numerics"]["rotation"], "full");
@@ -105,6 +107,7 @@ TEST(StudyScene, NumericsAndLoadingKeysLandOnTheirSceneKeys) {
   EXPECT_EQ(scene["numerics"]["local_damping"], 0.3);
   EXPECT_EQ(scene["preparation"]["gravity_factor"], 20.0);
   EXPECT_EQ(scene["sleeper"]["cycles"], 3);
+  EXPECT_EQ(scene["sleeper"]["frequency"], 10);
   // No clump key: the base scene's particles stay as they are.
   EXPECT_EQ(scene["particles"]["shape"], "table1/sample3");
   EXPECT_EQ(scene["particles"]["clump"]["c"], 0.4);

@@ -80,6 +80,9 @@ constexpr StudyKey kOtherKeys[] = {
            "Pa, the levelling plate on the bed's top through compaction; 0: a free top"),
     number("gravity_factor", closed(1, 1000), "loading", "enhanced gravity while compacting, x g"),
     integer("cycles", at_least(1), "loading", "load cycles of the sleeper"),
+    number("frequency", above(0), "loading",
+           "Hz, the sleeper's load cycle (the paper's 3; the scene asks for 20 timesteps a "
+           "cycle at least)"),
 };
 
 StudyKey clump_key(const ClumpParamField& f) {

@@ -29,6 +29,7 @@ constexpr SceneKey kOtherSceneKeys[] = {
     {"levelling_pressure", "/preparation/levelling_pressure"},
     {"gravity_factor", "/preparation/gravity_factor"},
     {"cycles", "/sleeper/cycles"},
+    {"frequency", "/sleeper/frequency"},
 };
 
 // Every study key's row, in the study keys' order.
