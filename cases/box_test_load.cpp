@@ -116,6 +116,7 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, s
   long samples = 0;
   const auto start = std::chrono::steady_clock::now();
   const long step0 = sim.step_count();
+  const EnergyBudget energy0 = sim.energy();
   while (sim.time() < t_end) {
     sim.step();
     const Servo& sv = sim.servos()[servo_id];
@@ -141,6 +142,7 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, s
       {"cycle", sim.step_count() - step0, sim.time() - t0,
        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
        sim.unbalanced_force_ratio(), ""});
+  out.stages.back().book_energy(energy0, sim.energy());
   out.rms_force_error = samples ? std::sqrt(err2 / samples) : 0.0;
   out.after = snapshot_contacts(sim, wall);
   out.position_end = sim.bodies().position;

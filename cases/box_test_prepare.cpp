@@ -115,6 +115,7 @@ constexpr double kUnloadTime = 0.01;  // s
 StageReport lift_plate(Simulation& sim, Index servo, const BoxTestScene& s, std::ostream* log) {
   const auto start = std::chrono::steady_clock::now();
   const double t0 = sim.time();
+  const EnergyBudget e0 = sim.energy();
   const Index lid = lid_of(sim);
   const double load = s.levelling_pressure * s.length * s.width;
   sim.set_servo_target(
@@ -133,6 +134,7 @@ StageReport lift_plate(Simulation& sim, Index servo, const BoxTestScene& s, std:
   r.simulated = sim.time() - t0;
   r.seconds = elapsed(start);
   r.unbalanced = sim.unbalanced_force_ratio();
+  r.book_energy(e0, sim.energy());
   print(log, r, sim);
   return r;
 }
@@ -147,12 +149,14 @@ StageReport grow(Simulation& sim, const std::string& name, double from, double s
   for (double r : sim.balls().radius) largest = std::max(largest, r);
   sim.set_size_scale(from);
   sim.prepare();
+  const EnergyBudget e0 = sim.energy();
   const long steps = std::max(1L, std::lround((1.0 - from) * largest / (speed * sim.dt())));
   for (long k = 1; k <= steps; ++k) {
     sim.set_size_scale(from + (1.0 - from) * double(k) / double(steps));
     sim.step();
   }
   StageReport r{name, steps, sim.time() - t0, elapsed(start), sim.unbalanced_force_ratio(), ""};
+  r.book_energy(e0, sim.energy());
   print(log, r, sim);
   return r;
 }
@@ -178,6 +182,7 @@ StageReport settle(Simulation& sim, const std::string& name, double ratio, long 
   long windows = 0;
   // A bed without contacts is falling, not balanced, whatever its force ratio.
   const auto touching = [&sim] { return 2 * sim.contacts().ball_contacts >= sim.bodies().size(); };
+  const EnergyBudget e0 = sim.energy();
   StageReport r{name, 0, 0.0, 0.0, 0.0, "step limit"};
   for (r.steps = 1; r.steps <= max_steps; ++r.steps) {
     sim.step();
@@ -211,6 +216,7 @@ StageReport settle(Simulation& sim, const std::string& name, double ratio, long 
   r.simulated = sim.time() - t0;
   r.seconds = elapsed(start);
   r.unbalanced = sim.unbalanced_force_ratio();
+  r.book_energy(e0, sim.energy());
   print(log, r, sim);
   return r;
 }

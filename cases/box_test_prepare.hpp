@@ -39,6 +39,16 @@ struct StageReport {
   bool settled() const { return ended_by != "step limit"; }
   // What ended it, as the run summary and the archive record it.
   std::string what_ended() const { return ended_by.empty() ? "fixed length" : ended_by; }
+  // The energy budget over the stage (engine/diagnostics.hpp), J: what gravity and the
+  // walls put in, what friction, damping and dashpots took out, and the change of the
+  // balance, which is the integration's error (and, while radii grow, the elastic
+  // energy growth creates: nothing books it as work).
+  double energy_in = 0.0, energy_dissipated = 0.0, energy_error = 0.0;
+  void book_energy(const EnergyBudget& from, const EnergyBudget& to) {
+    energy_in = (to.gravity_work - from.gravity_work) + (to.wall_work - from.wall_work);
+    energy_dissipated = to.dissipated() - from.dissipated();
+    energy_error = to.balance() - from.balance();
+  }
 };
 
 struct PreparedBed {

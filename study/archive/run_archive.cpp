@@ -130,6 +130,9 @@ void write_box_test_result(hid_t run, const BoxTestResult& r) {
       number_attribute(g, "unbalanced", s.unbalanced);
       number_attribute(g, "settled", static_cast<long>(s.settled()));
       string_attribute(g, "ended_by", s.what_ended());
+      number_attribute(g, "energy_in", s.energy_in);
+      number_attribute(g, "energy_dissipated", s.energy_dissipated);
+      number_attribute(g, "energy_error", s.energy_error);
     }
   }
   {

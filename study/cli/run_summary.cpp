@@ -30,7 +30,10 @@ nlohmann::json run_summary_json(const BoxTestResult& r) {
                       {"seconds", s.seconds},
                       {"unbalanced", s.unbalanced},
                       {"settled", s.settled()},
-                      {"ended_by", s.what_ended()}});
+                      {"ended_by", s.what_ended()},
+                      {"energy_in_J", s.energy_in},
+                      {"energy_dissipated_J", s.energy_dissipated},
+                      {"energy_error_J", s.energy_error}});
   nlohmann::json j = {{"scene", r.scene_name},
                       {"bodies", r.bodies},
                       {"balls", r.balls},
