@@ -260,7 +260,10 @@ bool StudyStore::append_pending() {
   // the room first, twice the parts' size for the copies and HDF5's own bookkeeping.
   std::uintmax_t needed = std::uintmax_t(1) << 20;
   std::error_code ec;
-  for (const std::string& part : pending_) needed += 2 * fs::file_size(part, ec);
+  for (const std::string& part : pending_) {
+    const std::uintmax_t size = fs::file_size(part, ec);
+    if (!ec) needed += 2 * size;
+  }
   const fs::path dir = fs::path(path_).parent_path();
   const fs::space_info room = fs::space(dir.empty() ? fs::path(".") : dir, ec);
   if (!ec && room.available < needed) {
