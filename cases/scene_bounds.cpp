@@ -20,7 +20,7 @@ std::string num(double v) {
 }
 
 // A run may take at most this many timesteps (of the one-sphere estimate, which is at
-// least a bed's timestep): 10^5 cycles of the paper's box test are 6.7e10 steps.
+// least a bed's timestep): 10^5 cycles of the paper's box test at 0.51 µs are 6.5e10 steps.
 constexpr double kMaxSteps = 1e12;
 // A load cycle sampled by fewer timesteps than this is not a sinusoid.
 constexpr double kMinStepsPerCycle = 20.0;
