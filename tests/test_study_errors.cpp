@@ -186,6 +186,8 @@ TEST(StudyErrors, ReplicatesAndSeedsTogether) {
 }
 
 TEST(StudyErrors, BadReplicateCountOrSeeds) {
+  expect_refused_matrix(R"({"common_seeds": 1})", "/matrix/common_seeds",
+                        {"common_seeds = 1", "true or false"});
   expect_refused_matrix(R"({"replicates": 0})", "/matrix/replicates",
                         {"replicates = 0", "an integer in [1, 100000]"});
   expect_refused_matrix(R"({"seeds": [1, -2]})", "/matrix/seeds/1",

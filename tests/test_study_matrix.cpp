@@ -249,6 +249,23 @@ TEST(StudyMatrix, SeedSchemeIsFixed) {
   EXPECT_EQ(s.runs[0].seed, run_seed(2007, params, 1));
 }
 
+// With "common_seeds" replicate k of every sample starts from one seed, the one of a
+// run with no parameters; without it two samples' replicate k differ.
+TEST(StudyMatrix, CommonSeedsGiveEverySampleTheReplicatesSeed) {
+  const std::string samples = R"("samples": [{"name": "ref", "shape": "table2/sample1"},
+    {"name": "fast", "shape": "table2/sample1", "dt_safety": 1.0}], "replicates": 2)";
+  const StudySpec common = expand("{" + samples + R"(, "common_seeds": true})");
+  const StudySpec own = expand("{" + samples + "}");
+  ASSERT_EQ(common.runs.size(), 4u);
+  for (int r = 0; r < 2; ++r) {
+    EXPECT_EQ(common.runs[r].seed, run_seed(2007, nlohmann::json::object(), r + 1));
+    EXPECT_EQ(common.runs[2 + r].seed, common.runs[r].seed);
+    EXPECT_EQ(own.runs[r].seed, run_seed(2007, own.runs[r].params, r + 1));
+    EXPECT_NE(own.runs[2 + r].seed, own.runs[r].seed);
+  }
+  EXPECT_NE(common.runs[0].seed, common.runs[1].seed);
+}
+
 TEST(StudyMatrix, ExampleStudiesExpand) {
   const StudySpec def = load_study_file(std::string(BALLAST_CASES_DIR) + "/default_study.json");
   EXPECT_EQ(def.name, "default");

@@ -30,13 +30,20 @@ class MatrixReader {
 
   MatrixFactors read(const ojson& matrix) {
     if (!matrix.is_object()) fail("/matrix", "matrix = " + matrix.dump(), "a JSON object");
-    allow_only_keys(matrix, "/matrix", {"axes", "zip", "samples", "replicates", "seeds"}, origin_);
+    allow_only_keys(matrix, "/matrix",
+                    {"axes", "zip", "samples", "replicates", "seeds", "common_seeds"}, origin_);
     MatrixFactors m;
     // Samples first: they are the outermost factor.
     if (matrix.contains("samples")) m.factors.push_back(samples(matrix.at("samples")));
     if (matrix.contains("axes")) axes(matrix.at("axes"), m.factors);
     if (matrix.contains("zip")) zip(matrix.at("zip"), m.factors);
     m.replicates = replicate_numbers(matrix);
+    if (matrix.contains("common_seeds")) {
+      const ojson& c = matrix.at("common_seeds");
+      if (!c.is_boolean())
+        fail("/matrix/common_seeds", "common_seeds = " + c.dump(), "true or false");
+      m.common_seeds = c.get<bool>();
+    }
     return m;
   }
 

@@ -34,6 +34,11 @@ struct Factor {
 struct MatrixFactors {
   std::vector<Factor> factors;  // samples (if any), axes as written, zip groups as written
   std::vector<int> replicates;  // replicate numbers in the order written
+  // "common_seeds": true: a replicate's seed depends on its number only, so that every
+  // sample and axis value of replicate k starts from the same bed generator stream
+  // (common random numbers: a variant's difference from a reference is then not the
+  // difference between two realisations as well).
+  bool common_seeds = false;
 };
 
 // Reads and checks the "matrix" object found at /matrix: unknown keys, types and ranges,

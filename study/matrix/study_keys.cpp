@@ -71,11 +71,23 @@ constexpr StudyKey kOtherKeys[] = {
          "clump rotation: gyroscopic term dropped as PFC3D 3.x does (eq 17, [W] = 0) or kept"),
     text("mass_mode", "sum|paper|uniform", "numerics", "clump mass properties (docs/CLUMPS.md)"),
     number("local_damping", closed_open(0, 1), "numerics", "PFC local damping coefficient"),
+    integer("max_stage_steps", at_least(1000), "numerics",
+            "step limit of each settling stage of the preparation"),
     {"contact_law", KeyKind::kLaw, kAny, "", "numerics", "",
      "the contact law: PFC's linear springs or Hertz–Mindlin (docs/BOX_TEST.md)"},
     integer("count", at_least(1), "sample",
             "particles: spheres, or clumps replacing them one for one (the paper's 1,936 "
             "spheres, 1,770 Sample 1 and 1,995 Sample 2 clumps)"),
+    number("ball_stiffness", above(0), "materials",
+           "N/m, kn = ks of the balls (the paper's 5.08e9); lower is cheaper: dt grows as "
+           "1 / sqrt(k)"),
+    number("wall_stiffness", above(0), "materials",
+           "N/m, kn = ks of the box walls and the sleeper (the paper's 5.08e9)"),
+    number("density", above(0), "materials",
+           "kg/m^3, the particles' density (the paper's 2600); density scaling: dt grows as "
+           "sqrt(density)"),
+    number("box_length", above(0), "sample",
+           "m, the box's length (the paper's 0.7); with count, the sample's scale"),
     number("levelling_pressure", closed(0, 1e6), "loading",
            "Pa, the levelling plate on the bed's top through compaction; 0: a free top"),
     number("gravity_factor", closed(1, 1000), "loading", "enhanced gravity while compacting, x g"),

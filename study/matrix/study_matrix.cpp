@@ -46,7 +46,7 @@ class Expander {
     const MatrixFactors m =
         read_matrix_factors(required_key(study, "", "matrix", origin_), origin_, presets_);
     check_count(m.factors, m.replicates.size());
-    spec.runs = product(m.factors, m.replicates, spec.seed);
+    spec.runs = product(m.factors, m.replicates, spec.seed, m.common_seeds);
     check_distinct(spec.runs);
     return spec;
   }
@@ -99,7 +99,8 @@ class Expander {
   // factors made only of clump parameters (they would be the same run again under
   // another id): such a run appears once, at the first combination that reaches it.
   std::vector<RunSpec> product(const std::vector<Factor>& factors,
-                               const std::vector<int>& replicates, std::uint64_t study_seed) {
+                               const std::vector<int>& replicates, std::uint64_t study_seed,
+                               bool common_seeds) {
     std::vector<RunSpec> runs;
     std::set<std::string> spheres_done;
     std::vector<std::size_t> at(factors.size(), 0);
@@ -133,7 +134,7 @@ class Expander {
         RunSpec run = base;
         run.replicate = r;
         run.id = run_id(run.sample, varied, r);
-        run.seed = run_seed(study_seed, run.params, r);
+        run.seed = run_seed(study_seed, common_seeds ? json::object() : run.params, r);
         run.index = runs.size();
         runs.push_back(std::move(run));
       }

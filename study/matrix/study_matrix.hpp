@@ -22,7 +22,7 @@ struct RunSpec {
   std::string id;          // stable, readable, unique within the study (run_id())
   std::string sample;      // the sample's name; empty when the study lists no samples
   nlohmann::json params;   // every key that applies to this run, values in canonical form
-  std::uint64_t seed = 0;  // run_seed(study seed, params, replicate)
+  std::uint64_t seed = 0;  // run_seed(study seed, params or {} with common_seeds, replicate)
   int replicate = 1;       // the replicate number: 1..N for "replicates": N, or from "seeds"
   std::size_t index = 0;   // position in StudySpec::runs
 };
