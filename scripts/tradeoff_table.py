@@ -1,0 +1,225 @@
+#!/usr/bin/python3
+"""Speed against accuracy on the box test: each variant's cost and its error against
+the reference, beside the reference's seed-to-seed scatter.
+
+    /usr/bin/python3 scripts/tradeoff_table.py ARCHIVE.h5 [--reference reference]
+        [--out docs/tradeoffs] [--mark balanced=preset-balanced,fast=preset-fast]
+
+ARCHIVE is a study archive whose samples are a reference and variants of it, run on
+common seeds (`"common_seeds": true`: cases/tradeoff_study.json), so that replicate k
+of every variant starts from the reference's replicate k. For each variant and each
+quantity q of QUANTITIES:
+
+    delta   = mean over the replicates k both have of (q_variant,k - q_reference,k)
+    scatter = the sample standard deviation of q over the reference's replicates
+    error   = |delta| / scatter
+
+An error below 1 is below what one more seed would change: noise, not a cost of the
+variant. `worst` is the largest error over the quantities; a variant is "within the
+scatter" when worst <= 1. Cost is the mean over the variant's replicates of wall
+seconds, timesteps and ball-steps (balls x timesteps, summed over the stages), and its
+ratio to the reference's; ball-steps are exact, wall seconds depend on the machine's
+load. Writes tradeoff.csv (every number), tradeoff.md (the tables docs/TRADEOFFS.md
+quotes) and pareto.png (cost against worst error, one point per variant, the --mark
+variants starred) into --out, and prints the Markdown.
+"""
+import argparse
+import csv
+import math
+import os
+import re
+import sys
+
+from ballast_archive import ArchiveError, open_archive
+from compare import quantities
+from replicates import summarize
+
+# (key of compare.quantities, label, format)
+QUANTITIES = (
+    ("settlement_peak_mm", "settlement at peak (mm)", "{:.3g}"),
+    ("permanent_settlement_mm", "permanent settlement (mm)", "{:.3g}"),
+    ("resilient_settlement_mm", "resilient settlement (mm)", "{:.3g}"),
+    ("rotation_loading_mean_deg", "mean rotation, loading (°)", "{:.3g}"),
+    ("rotation_loading_max_deg", "max rotation, loading (°)", "{:.3g}"),
+    ("max_displacement_peak_mm", "max displacement at peak (mm)", "{:.3g}"),
+    ("porosity_grid", "porosity, 5 mm grid", "{:.4f}"),
+    ("contacts_peak_mean_force_N", "mean contact force at peak (N)", "{:.4g}"),
+)
+SHORT = ("settl. peak", "permanent", "resilient", "rot. mean", "rot. max", "max displ.",
+         "porosity", "mean force")
+
+
+def replicate_number(run):
+    m = re.search(r"-r(\d+)$", run.id)
+    if not m:
+        raise ArchiveError(f"{run.where}: the id does not end in -r<replicate>")
+    return int(m.group(1))
+
+
+def run_cost(run):
+    """(wall seconds, timesteps, ball-steps) of one run, over all its stages."""
+    stages = run.group["stages"]
+    steps = sum(int(stages[s].attrs["steps"]) for s in stages)
+    return float(run.attribute("wall_seconds")), steps, steps * int(run.attribute("balls"))
+
+
+def values(run):
+    got = {key: value for key, _, value, _, _ in quantities(run)}
+    return {key: got.get(key) for key, _, _ in QUANTITIES}
+
+
+class Variant:
+    def __init__(self, name, runs):
+        self.name = name
+        self.by_replicate = {replicate_number(r): values(r) for r in runs}
+        costs = [run_cost(r) for r in runs]
+        self.wall, self.steps, self.ball_steps = (math.fsum(c[i] for c in costs) / len(costs)
+                                                  for i in range(3))
+        self.balls = sum(int(r.attribute("balls")) for r in runs) / len(runs)
+        self.runs = len(runs)
+
+
+def compare(variant, reference):
+    """{key: (variant mean, delta, scatter, error)}; None entries where undefined."""
+    out = {}
+    common = sorted(set(variant.by_replicate) & set(reference.by_replicate))
+    for key, _, _ in QUANTITIES:
+        mean = summarize([v[key] for v in variant.by_replicate.values()]).mean
+        diffs = [variant.by_replicate[k][key] - reference.by_replicate[k][key] for k in common
+                 if variant.by_replicate[k][key] is not None
+                 and reference.by_replicate[k][key] is not None]
+        delta = math.fsum(diffs) / len(diffs) if diffs else None
+        scatter = summarize([v[key] for v in reference.by_replicate.values()]).sd
+        error = (abs(delta) / scatter if delta is not None and scatter else None)
+        out[key] = (mean, delta, scatter, error)
+    return out
+
+
+def worst(errors):
+    known = [e[3] for e in errors.values() if e[3] is not None]
+    return max(known) if known else None
+
+
+def load(path, reference_name):
+    with open_archive(path) as archive:
+        if archive.kind != "study":
+            raise ArchiveError(f"{path}: a single-run archive; the trade-off needs a study")
+        groups = {}
+        for run in archive.select():
+            groups.setdefault(run.sample or run.id, []).append(run)
+        variants = [Variant(name, runs) for name, runs in groups.items()]
+    ref = [v for v in variants if v.name == reference_name]
+    if not ref:
+        raise ArchiveError(f"{path}: no sample named '{reference_name}' (samples: "
+                           + ", ".join(v.name for v in variants) + ")")
+    if ref[0].runs < 2:
+        raise ArchiveError(f"{path}: the reference has {ref[0].runs} run: its scatter needs 2")
+    return ref[0], variants
+
+
+def fmt_error(e):
+    return "–" if e is None else f"{e:.2f}"
+
+
+def markdown(reference, variants, table):
+    lines = ["| variant | runs | ball-steps (× ref) | wall (× ref) | "
+             + " | ".join(SHORT) + " | worst | within scatter |",
+             "|---" * (len(SHORT) + 6) + "|"]
+    for v in variants:
+        errors = table[v.name]
+        w = worst(errors)
+        lines.append(
+            f"| {v.name} | {v.runs} | {v.ball_steps / reference.ball_steps:.2f} | "
+            f"{v.wall / reference.wall:.2f} | "
+            + " | ".join(fmt_error(errors[k][3]) for k, _, _ in QUANTITIES)
+            + f" | {fmt_error(w)} | {'–' if w is None else 'yes' if w <= 1 else 'no'} |")
+    lines += ["", "| quantity | reference mean | scatter (sd over seeds) |", "|---|---|---|"]
+    for key, label, f in QUANTITIES:
+        s = summarize([v[key] for v in reference.by_replicate.values()])
+        lines.append(f"| {label} | {f.format(s.mean)} | {f.format(s.sd)} |")
+    lines += ["", f"Reference: {reference.runs} runs, {reference.balls:,.0f} balls, "
+              f"{reference.steps:,.0f} timesteps, {reference.ball_steps:.3g} ball-steps, "
+              f"{reference.wall:.0f} s of one core on average."]
+    return "\n".join(lines)
+
+
+def write_csv(path, reference, variants, table):
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["variant", "runs", "balls", "steps", "ball_steps", "wall_s",
+                    "ball_steps_vs_ref", "wall_vs_ref", "worst_error"]
+                   + [f"{k}_{x}" for k, _, _ in QUANTITIES
+                      for x in ("mean", "delta", "scatter", "error")])
+        for v in variants:
+            errors = table[v.name]
+            w.writerow([v.name, v.runs, f"{v.balls:.0f}", f"{v.steps:.0f}",
+                        f"{v.ball_steps:.6g}", f"{v.wall:.4g}",
+                        f"{v.ball_steps / reference.ball_steps:.4g}",
+                        f"{v.wall / reference.wall:.4g}",
+                        "" if worst(errors) is None else f"{worst(errors):.4g}"]
+                       + ["" if x is None else f"{x:.6g}"
+                          for k, _, _ in QUANTITIES for x in errors[k]])
+
+
+def pareto_plot(path, reference, variants, table, marks):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    for v in variants:
+        if v is reference:
+            continue
+        w = worst(table[v.name])
+        if w is None:
+            continue
+        x, star = v.wall / reference.wall, v.name in marks.values()
+        ax.scatter([x], [max(w, 1e-2)], marker="*" if star else "o", s=160 if star else 30,
+                   color="tab:red" if star else "tab:blue", zorder=3)
+        label = next((p for p, n in marks.items() if n == v.name), v.name)
+        ax.annotate(label, (x, max(w, 1e-2)), textcoords="offset points", xytext=(4, 3),
+                    fontsize=7)
+    ax.axhline(1.0, color="grey", ls="--", lw=1)
+    ax.text(ax.get_xlim()[0], 1.03, " the reference's seed-to-seed scatter", fontsize=7,
+            color="grey", va="bottom")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("cost: wall time per run, relative to the reference")
+    ax.set_ylabel("worst error over the quantities, |Δ| / scatter")
+    ax.set_title(f"Speed against accuracy, {reference.balls:,.0f}-ball box test, "
+                 f"{reference.runs} common seeds", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("archive")
+    p.add_argument("--reference", default="reference", help="the reference sample's name")
+    p.add_argument("--out", help="folder for tradeoff.csv, tradeoff.md and pareto.png")
+    p.add_argument("--mark", default="",
+                   help="label=sample pairs, comma-separated: variants to star in the plot")
+    a = p.parse_args(argv)
+    try:
+        marks = dict(m.split("=", 1) for m in a.mark.split(",") if m)
+    except ValueError:
+        p.error(f"--mark {a.mark!r}: allowed: label=sample pairs separated by commas")
+    try:
+        reference, variants = load(a.archive, a.reference)
+    except ArchiveError as e:
+        print(f"tradeoff_table: {e}", file=sys.stderr)
+        return 2
+    table = {v.name: compare(v, reference) for v in variants}
+    text = markdown(reference, variants, table)
+    print(text)
+    if a.out:
+        os.makedirs(a.out, exist_ok=True)
+        with open(os.path.join(a.out, "tradeoff.md"), "w") as f:
+            f.write(text + "\n")
+        write_csv(os.path.join(a.out, "tradeoff.csv"), reference, variants, table)
+        pareto_plot(os.path.join(a.out, "pareto.png"), reference, variants, table, marks)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

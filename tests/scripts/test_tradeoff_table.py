@@ -1,0 +1,92 @@
+#!/usr/bin/python3
+"""scripts/tradeoff_table.py on a synthetic study: a variant's error is the mean of its
+paired differences from the reference over the replicates both have, divided by the
+reference's seed-to-seed standard deviation; costs are ratios to the reference's; a
+study without the reference sample is refused with exit code 2.
+
+    /usr/bin/python3 tests/scripts/test_tradeoff_table.py
+"""
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCRIPT = os.path.join(HERE, "..", "..", "scripts", "tradeoff_table.py")
+sys.path.insert(0, HERE)
+
+from synthetic_archive import run, write_study  # noqa: E402
+
+SHAPE = "table2/sample1"
+
+
+def runs(sample, settlements_mm, wall=12.0, balls=400, porosity=0.40):
+    """One run per settlement (mm at peak), replicates 1, 2, ..."""
+    return [run(f"{sample}-r{k + 1}", sample, SHAPE, k + 1, balls=balls, wall_seconds=wall,
+                settlement_peak=s * 1e-3, porosity_grid=porosity + 0.01 * k)
+            for k, s in enumerate(settlements_mm)]
+
+
+def table(*args):
+    return subprocess.run([sys.executable, SCRIPT, *args], capture_output=True, text=True)
+
+
+class TradeoffTable(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        d = cls.tmp.name
+        # Reference settlements 1.0, 1.2, 1.4 mm: sd 0.2 mm. "near" is 0.1 mm above on
+        # every seed (error 0.5), "far" 0.6 mm below on its two seeds (error 3: the
+        # reference's third seed is left out of the pairing), at twice the wall time and
+        # half the balls.
+        cls.archive = write_study(os.path.join(d, "t.h5"), runs("reference", [1.0, 1.2, 1.4])
+                                  + runs("near", [1.1, 1.3, 1.5])
+                                  + runs("far", [0.4, 0.6], wall=24.0, balls=200))
+        cls.out = os.path.join(d, "out")
+        cls.result = table(cls.archive, "--out", cls.out, "--mark", "fast=near")
+        with open(os.path.join(cls.out, "tradeoff.csv")) as f:
+            cls.rows = {r["variant"]: r for r in csv.DictReader(f)}
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_error_is_the_paired_difference_over_the_reference_scatter(self):
+        self.assertEqual(self.result.returncode, 0, self.result.stderr)
+        near, far = self.rows["near"], self.rows["far"]
+        self.assertAlmostEqual(float(near["settlement_peak_mm_delta"]), 0.1, places=9)
+        self.assertAlmostEqual(float(near["settlement_peak_mm_scatter"]), 0.2, places=9)
+        self.assertAlmostEqual(float(near["settlement_peak_mm_error"]), 0.5, places=6)
+        # A shift down counts as much as one up: the error is |delta| / scatter.
+        self.assertAlmostEqual(float(far["settlement_peak_mm_delta"]), -0.6, places=9)
+        self.assertAlmostEqual(float(far["settlement_peak_mm_error"]), 3.0, places=6)
+        # Equal values on every seed: no scatter, so no error rather than a division by 0.
+        self.assertEqual(near["rotation_loading_mean_deg_error"], "")
+        # The reference against itself: no difference at all.
+        self.assertAlmostEqual(float(self.rows["reference"]["settlement_peak_mm_error"]), 0.0)
+
+    def test_costs_are_ratios_to_the_reference(self):
+        far = self.rows["far"]
+        self.assertAlmostEqual(float(far["wall_vs_ref"]), 2.0, places=9)
+        # Same steps per run (two stages of 1000), half the balls.
+        self.assertAlmostEqual(float(far["ball_steps_vs_ref"]), 0.5, places=9)
+        self.assertEqual(far["runs"], "2")
+
+    def test_markdown_and_plot_are_written(self):
+        with open(os.path.join(self.out, "tradeoff.md")) as f:
+            md = f.read()
+        self.assertIn("| near | 3 | 1.00 | 1.00 |", md)
+        self.assertTrue(os.path.getsize(os.path.join(self.out, "pareto.png")) > 1000)
+
+    def test_a_study_without_the_reference_is_refused(self):
+        r = table(self.archive, "--reference", "baseline")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("no sample named 'baseline'", r.stderr)
+        self.assertIn("reference, near, far", r.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
