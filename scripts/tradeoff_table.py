@@ -16,7 +16,12 @@ quantity q of QUANTITIES:
 
 An error below 1 is below what one more seed would change: noise, not a cost of the
 variant. `worst` is the largest error over the quantities; a variant is "within the
-scatter" when worst <= 1. Cost is the mean over the variant's replicates of wall
+scatter" when worst <= 1. `noise` is the standard error of delta / scatter, the sample
+standard deviation of the paired differences over sqrt(n), the median over the
+quantities: how finely n seeds resolve a shift. A variant that changes only the loading
+shares the reference's prepared beds and its differences are small and smooth; one that
+changes the preparation draws new beds, and its differences are as large as a change of
+seed (noise near sqrt(2/n)). Cost is the mean over the variant's replicates of wall
 seconds, timesteps and ball-steps (balls x timesteps, summed over the stages), and its
 ratio to the reference's; ball-steps are exact, wall seconds depend on the machine's
 load. Writes tradeoff.csv (every number), tradeoff.md (the tables docs/TRADEOFFS.md
@@ -80,7 +85,7 @@ class Variant:
 
 
 def compare(variant, reference):
-    """{key: (variant mean, delta, scatter, error)}; None entries where undefined."""
+    """{key: (variant mean, delta, scatter, error, noise)}; None entries where undefined."""
     out = {}
     common = sorted(set(variant.by_replicate) & set(reference.by_replicate))
     for key, _, _ in QUANTITIES:
@@ -91,7 +96,10 @@ def compare(variant, reference):
         delta = math.fsum(diffs) / len(diffs) if diffs else None
         scatter = summarize([v[key] for v in reference.by_replicate.values()]).sd
         error = (abs(delta) / scatter if delta is not None and scatter else None)
-        out[key] = (mean, delta, scatter, error)
+        spread = summarize(diffs).sd
+        noise = (spread / math.sqrt(len(diffs)) / scatter
+                 if spread is not None and scatter else None)
+        out[key] = (mean, delta, scatter, error, noise)
     return out
 
 
@@ -117,14 +125,19 @@ def load(path, reference_name):
     return ref[0], variants
 
 
+def median_noise(errors):
+    known = sorted(e[4] for e in errors.values() if e[4] is not None)
+    return known[len(known) // 2] if known else None
+
+
 def fmt_error(e):
     return "–" if e is None else f"{e:.2f}"
 
 
 def markdown(reference, variants, table):
     lines = ["| variant | runs | ball-steps (× ref) | wall (× ref) | "
-             + " | ".join(SHORT) + " | worst | within scatter |",
-             "|---" * (len(SHORT) + 6) + "|"]
+             + " | ".join(SHORT) + " | worst | noise | within scatter |",
+             "|---" * (len(SHORT) + 7) + "|"]
     for v in variants:
         errors = table[v.name]
         w = worst(errors)
@@ -132,7 +145,8 @@ def markdown(reference, variants, table):
             f"| {v.name} | {v.runs} | {v.ball_steps / reference.ball_steps:.2f} | "
             f"{v.wall / reference.wall:.2f} | "
             + " | ".join(fmt_error(errors[k][3]) for k, _, _ in QUANTITIES)
-            + f" | {fmt_error(w)} | {'–' if w is None else 'yes' if w <= 1 else 'no'} |")
+            + f" | {fmt_error(w)} | {fmt_error(median_noise(errors))} |"
+            f" {'–' if w is None else 'yes' if w <= 1 else 'no'} |")
     lines += ["", "| quantity | reference mean | scatter (sd over seeds) |", "|---|---|---|"]
     for key, label, f in QUANTITIES:
         s = summarize([v[key] for v in reference.by_replicate.values()])
@@ -147,16 +161,17 @@ def write_csv(path, reference, variants, table):
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["variant", "runs", "balls", "steps", "ball_steps", "wall_s",
-                    "ball_steps_vs_ref", "wall_vs_ref", "worst_error"]
+                    "ball_steps_vs_ref", "wall_vs_ref", "worst_error", "noise"]
                    + [f"{k}_{x}" for k, _, _ in QUANTITIES
-                      for x in ("mean", "delta", "scatter", "error")])
+                      for x in ("mean", "delta", "scatter", "error", "noise")])
         for v in variants:
             errors = table[v.name]
             w.writerow([v.name, v.runs, f"{v.balls:.0f}", f"{v.steps:.0f}",
                         f"{v.ball_steps:.6g}", f"{v.wall:.4g}",
                         f"{v.ball_steps / reference.ball_steps:.4g}",
                         f"{v.wall / reference.wall:.4g}",
-                        "" if worst(errors) is None else f"{worst(errors):.4g}"]
+                        "" if worst(errors) is None else f"{worst(errors):.4g}",
+                        "" if median_noise(errors) is None else f"{median_noise(errors):.4g}"]
                        + ["" if x is None else f"{x:.6g}"
                           for k, _, _ in QUANTITIES for x in errors[k]])
 

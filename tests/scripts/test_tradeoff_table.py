@@ -41,10 +41,11 @@ class TradeoffTable(unittest.TestCase):
         # Reference settlements 1.0, 1.2, 1.4 mm: sd 0.2 mm. "near" is 0.1 mm above on
         # every seed (error 0.5), "far" 0.6 mm below on its two seeds (error 3: the
         # reference's third seed is left out of the pairing), at twice the wall time and
-        # half the balls.
+        # half the balls. "wobbly" differs by 0.2, 0 and 0 mm.
         cls.archive = write_study(os.path.join(d, "t.h5"), runs("reference", [1.0, 1.2, 1.4])
                                   + runs("near", [1.1, 1.3, 1.5])
-                                  + runs("far", [0.4, 0.6], wall=24.0, balls=200))
+                                  + runs("far", [0.4, 0.6], wall=24.0, balls=200)
+                                  + runs("wobbly", [1.2, 1.2, 1.4]))
         cls.out = os.path.join(d, "out")
         cls.result = table(cls.archive, "--out", cls.out, "--mark", "fast=near")
         with open(os.path.join(cls.out, "tradeoff.csv")) as f:
@@ -68,6 +69,13 @@ class TradeoffTable(unittest.TestCase):
         # The reference against itself: no difference at all.
         self.assertAlmostEqual(float(self.rows["reference"]["settlement_peak_mm_error"]), 0.0)
 
+    def test_noise_is_the_standard_error_of_the_paired_differences(self):
+        wobbly = self.rows["wobbly"]
+        self.assertAlmostEqual(float(wobbly["settlement_peak_mm_delta"]), 0.2 / 3, places=6)
+        # sd of (0.2, 0, 0) is 0.2 / sqrt(3); over sqrt(3) seeds and the 0.2 mm scatter: 1/3.
+        self.assertAlmostEqual(float(wobbly["settlement_peak_mm_noise"]), 1 / 3, places=6)
+        self.assertAlmostEqual(float(self.rows["near"]["settlement_peak_mm_noise"]), 0.0, places=9)
+
     def test_costs_are_ratios_to_the_reference(self):
         far = self.rows["far"]
         self.assertAlmostEqual(float(far["wall_vs_ref"]), 2.0, places=9)
@@ -85,7 +93,7 @@ class TradeoffTable(unittest.TestCase):
         r = table(self.archive, "--reference", "baseline")
         self.assertEqual(r.returncode, 2)
         self.assertIn("no sample named 'baseline'", r.stderr)
-        self.assertIn("reference, near, far", r.stderr)
+        self.assertIn("reference, near, far, wobbly", r.stderr)
 
 
 if __name__ == "__main__":
