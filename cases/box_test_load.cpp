@@ -196,6 +196,11 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, s
 BoxTestResult run_box_test(const BoxTestScene& s, std::ostream* log,
                            const std::function<void(const Simulation&)>& at_end) {
   const auto start = std::chrono::steady_clock::now();
+  if (log && !s.numerics_preset.empty()) {
+    *log << "numerics preset '" << s.numerics_preset << "' (docs/TRADEOFFS.md)";
+    for (const std::string& field : s.preset_fields_kept) *log << "; the scene's own " << field;
+    *log << "\n";
+  }
   PreparedBed bed = prepare_box_test(s, log);
   BoxTestResult out;
   out.scene_name = s.name;

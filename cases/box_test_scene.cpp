@@ -8,6 +8,7 @@
 #include "cases/clump_overrides.hpp"
 #include "cases/clump_presets.hpp"
 #include "cases/json_fields.hpp"
+#include "cases/numerics_presets.hpp"
 #include "cases/scene_bounds.hpp"
 #include "engine/contact_laws.hpp"
 
@@ -99,8 +100,10 @@ void read_particles(const nlohmann::json& j, BoxTestScene& s, const std::string&
 
 }  // namespace
 
-BoxTestScene parse_box_test_scene(const nlohmann::json& j, const std::string& scene_dir) {
+BoxTestScene parse_box_test_scene(const nlohmann::json& given, const std::string& scene_dir) {
   BoxTestScene s;
+  nlohmann::json j = given;
+  s.preset_fields_kept = apply_numerics_preset(j);
   JsonFields top(j, "");
   top.text("name", s.name, "a non-empty string", [](const std::string& v) { return !v.empty(); });
   read_particles(top.object("particles"), s, scene_dir);
@@ -130,6 +133,8 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& j, const std::string& sc
          [](const std::string& v) { return v == "pfc" || v == "full"; });
   s.sim.rotation = parse_rotation_integrator(rotation);
   n.boolean("adaptive_rebuild", s.sim.adaptive_rebuild);
+  n.text("preset", s.numerics_preset, numerics_preset_names(),
+         [](const std::string&) { return true; });  // checked by apply_numerics_preset
   n.finish();
 
   JsonFields p(top.object("preparation"), "/preparation");

@@ -6,6 +6,7 @@
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cases/box_test.hpp"
 #include "engine/clump_generator.hpp"
@@ -46,6 +47,10 @@ struct BoxTestScene {
   // engine's defaults. Each stage's simulation starts from them and adds its domain
   // and gravity (box_test_prepare.cpp, settings_for).
   SimulationSettings sim;
+  // /numerics/preset: the named preset whose fields filled what the scene left out
+  // (cases/numerics_presets.hpp); empty: none.
+  std::string numerics_preset;
+  std::vector<std::string> preset_fields_kept;  // the preset's fields the scene gave itself
   // preparation (PFC radius expansion, then gravity compaction)
   double initial_porosity = 0.5;      // of the grown spheres in their fill region (loose:
                                       // denser jams while growing and springs apart)

@@ -2,12 +2,14 @@
 """Speed against accuracy on the box test: each variant's cost and its error against
 the reference, beside the reference's seed-to-seed scatter.
 
-    /usr/bin/python3 scripts/tradeoff_table.py ARCHIVE.h5 [--reference reference]
-        [--out docs/tradeoffs] [--mark balanced=preset-balanced,fast=preset-fast]
+    /usr/bin/python3 scripts/tradeoff_table.py ARCHIVE.h5 [MORE.h5 ...]
+        [--reference reference] [--out docs/tradeoffs] [--mark fast=preset-fast]
 
-ARCHIVE is a study archive whose samples are a reference and variants of it, run on
-common seeds (`"common_seeds": true`: cases/tradeoff_study.json), so that replicate k
-of every variant starts from the reference's replicate k. For each variant and each
+The archives are studies whose samples are a reference and variants of it, run on
+common seeds (`"common_seeds": true`) from one study seed, so that replicate k of
+every variant starts from the reference's replicate k, whichever archive holds it
+(cases/tradeoff_study.json and cases/tradeoff_presets.json). A sample name may appear
+in one archive only. For each variant and each
 quantity q of QUANTITIES:
 
     delta   = mean over the replicates k both have of (q_variant,k - q_reference,k)
@@ -108,20 +110,27 @@ def worst(errors):
     return max(known) if known else None
 
 
-def load(path, reference_name):
-    with open_archive(path) as archive:
-        if archive.kind != "study":
-            raise ArchiveError(f"{path}: a single-run archive; the trade-off needs a study")
-        groups = {}
-        for run in archive.select():
-            groups.setdefault(run.sample or run.id, []).append(run)
-        variants = [Variant(name, runs) for name, runs in groups.items()]
+def load(paths, reference_name):
+    variants, where = [], {}
+    for path in paths:
+        with open_archive(path) as archive:
+            if archive.kind != "study":
+                raise ArchiveError(f"{path}: a single-run archive; the trade-off needs a study")
+            groups = {}
+            for run in archive.select():
+                groups.setdefault(run.sample or run.id, []).append(run)
+            for name, runs in groups.items():
+                if name in where:
+                    raise ArchiveError(f"{path}: sample '{name}' is also in {where[name]}")
+                where[name] = path
+                variants.append(Variant(name, runs))
     ref = [v for v in variants if v.name == reference_name]
     if not ref:
-        raise ArchiveError(f"{path}: no sample named '{reference_name}' (samples: "
+        raise ArchiveError(f"{', '.join(paths)}: no sample named '{reference_name}' (samples: "
                            + ", ".join(v.name for v in variants) + ")")
     if ref[0].runs < 2:
-        raise ArchiveError(f"{path}: the reference has {ref[0].runs} run: its scatter needs 2")
+        raise ArchiveError(f"{where[reference_name]}: the reference has {ref[0].runs} run: "
+                           "its scatter needs 2")
     return ref[0], variants
 
 
@@ -209,7 +218,7 @@ def pareto_plot(path, reference, variants, table, marks):
 
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("archive")
+    p.add_argument("archives", nargs="+", metavar="ARCHIVE")
     p.add_argument("--reference", default="reference", help="the reference sample's name")
     p.add_argument("--out", help="folder for tradeoff.csv, tradeoff.md and pareto.png")
     p.add_argument("--mark", default="",
@@ -220,7 +229,7 @@ def main(argv=None):
     except ValueError:
         p.error(f"--mark {a.mark!r}: allowed: label=sample pairs separated by commas")
     try:
-        reference, variants = load(a.archive, a.reference)
+        reference, variants = load(a.archives, a.reference)
     except ArchiveError as e:
         print(f"tradeoff_table: {e}", file=sys.stderr)
         return 2

@@ -71,6 +71,8 @@ constexpr StudyKey kOtherKeys[] = {
          "clump rotation: gyroscopic term dropped as PFC3D 3.x does (eq 17, [W] = 0) or kept"),
     text("mass_mode", "sum|paper|uniform", "numerics", "clump mass properties (docs/CLUMPS.md)"),
     number("local_damping", closed_open(0, 1), "numerics", "PFC local damping coefficient"),
+    text("preset", "paper|balanced|fast", "numerics",
+         "named numerics preset (docs/TRADEOFFS.md); the run's other keys win over it"),
     integer("max_stage_steps", at_least(1000), "numerics",
             "step limit of each settling stage of the preparation"),
     {"contact_law", KeyKind::kLaw, kAny, "", "numerics", "",

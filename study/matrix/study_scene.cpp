@@ -24,6 +24,7 @@ constexpr SceneKey kOtherSceneKeys[] = {
     {"rotation", "/numerics/rotation"},
     {"mass_mode", "/particles/mass_mode"},
     {"local_damping", "/numerics/local_damping"},
+    {"preset", "/numerics/preset"},
     {"max_stage_steps", "/preparation/max_stage_steps"},
     {"ball_stiffness", "/materials/ball_stiffness"},
     {"wall_stiffness", "/materials/wall_stiffness"},

@@ -89,6 +89,18 @@ class TradeoffTable(unittest.TestCase):
         self.assertIn("| near | 3 | 1.00 | 1.00 |", md)
         self.assertTrue(os.path.getsize(os.path.join(self.out, "pareto.png")) > 1000)
 
+    def test_archives_pool_their_samples_and_refuse_a_sample_twice(self):
+        extra = write_study(os.path.join(self.tmp.name, "extra.h5"), runs("late", [1.4, 1.6]))
+        out = os.path.join(self.tmp.name, "pooled")
+        r = table(self.archive, extra, "--out", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(os.path.join(out, "tradeoff.csv")) as f:
+            late = {row["variant"]: row for row in csv.DictReader(f)}["late"]
+        self.assertAlmostEqual(float(late["settlement_peak_mm_delta"]), 0.4, places=6)
+        r = table(self.archive, self.archive)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("sample 'reference' is also in", r.stderr)
+
     def test_a_study_without_the_reference_is_refused(self):
         r = table(self.archive, "--reference", "baseline")
         self.assertEqual(r.returncode, 2)
