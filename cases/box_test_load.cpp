@@ -232,7 +232,7 @@ BoxTestResult run_box_test(const BoxTestScene& s, std::ostream* log,
     ClumpSampleRecord c;
     c.shape = s.shape;
     c.params = *s.clumps;
-    c.mass = {s.mass_mode, s.density, s.mass_accuracy};
+    c.mass = {s.mass_mode, s.simulated_density(), s.mass_accuracy};
     c.seed = s.seed;
     c.templates = std::move(bed.templates);
     c.shapes = measure_clump_shapes(c.templates, virtual_sphere_radius(c.params), {});

@@ -20,8 +20,6 @@ namespace ballast {
 
 namespace {
 
-constexpr double kG = 9.81;
-
 double elapsed(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
@@ -268,7 +266,7 @@ PreparedBed generate_sample(const BoxTestScene& s, std::ostream* log) {
   std::vector<ClumpTemplate> templates;
   double particle_volume = sphere_volume;
   if (s.clumps) {
-    const ClumpMassOptions mass{s.mass_mode, s.density, s.mass_accuracy};
+    const ClumpMassOptions mass{s.mass_mode, s.simulated_density(), s.mass_accuracy};
     templates =
         generate_clump_templates(*s.clumps, mass, static_cast<std::size_t>(s.count), s.seed);
     particle_volume = std::max(sphere_volume, mean_clump_volume(templates));
@@ -307,7 +305,7 @@ PreparedBed generate_sample(const BoxTestScene& s, std::ostream* log) {
     sim.set_damping_ratio(kGrowthDampingRatio);
     const Index mat = sim.add_material(box_test::with_friction(s.ball, 0.0));
     add_walls(sim, s, fill, 0.0);
-    for (const Vec3& p : centres) sim.add_sphere(p, r, s.density, mat);
+    for (const Vec3& p : centres) sim.add_sphere(p, r, s.simulated_density(), mat);
     out.stages.push_back(grow(sim, "expand", shrink, s.expansion_speed, log));
     sim.quench();  // the grown gas at rest at once, instead of cycling it cool
     out.dt_spheres = sim.dt();
@@ -363,7 +361,7 @@ PreparedBed import_sample(const BoxTestScene& s, std::ostream* log) {
   } catch (const SetupError& e) {
     throw SetupError(std::string("/particles/file: ") + e.what());
   }
-  const PackingMass mass{{s.mass_mode, s.density, s.mass_accuracy}, s.diameter};
+  const PackingMass mass{{s.mass_mode, s.simulated_density(), s.mass_accuracy}, s.diameter};
   PreparedBed out{Simulation(settings_for(s, packing_body_size(packing))), {}, 0.0, {}};
   Simulation& sim = out.sim;
   const Index mat = sim.add_material(box_test::with_friction(s.ball, 0.0));
@@ -419,7 +417,7 @@ PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
     Simulation& sim = out.sim;
     sim.set_local_damping(0.0);
     sim.set_damping_ratio(kSettleDampingRatio);
-    sim.set_gravity(Vec3(0, 0, -kG * s.gravity_factor));
+    sim.set_gravity(Vec3(0, 0, s.gravity(s.gravity_factor)));
     out.stages.push_back(
         settle(sim, "settle", s.equilibrium_ratio, s.max_stage_steps, log, SettleRule::kKinetic));
     sim.set_damping_ratio(0.0);
@@ -434,10 +432,10 @@ PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
   // Stage 3: compaction.
   Simulation& sim = out.sim;
   if (log) *log << "stage 3: compaction at " << s.gravity_factor << " g, then 1 g\n";
-  sim.set_gravity(Vec3(0, 0, -kG * s.gravity_factor));
+  sim.set_gravity(Vec3(0, 0, s.gravity(s.gravity_factor)));
   if (plate) lower_plate(sim, s);
   out.stages.push_back(settle(sim, "compact", s.equilibrium_ratio, s.max_stage_steps, log));
-  sim.set_gravity(Vec3(0, 0, -kG));
+  sim.set_gravity(Vec3(0, 0, s.gravity(1.0)));
   out.stages.push_back(settle(sim, "1 g", s.equilibrium_ratio, s.max_stage_steps, log));
   sim.set_all_friction(s.friction_loading);
   out.stages.push_back(settle(sim, "mu=" + std::to_string(s.friction_loading).substr(0, 4),

@@ -133,6 +133,8 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& given, const std::string
          [](const std::string& v) { return v == "pfc" || v == "full"; });
   s.sim.rotation = parse_rotation_integrator(rotation);
   n.boolean("adaptive_rebuild", s.sim.adaptive_rebuild);
+  n.number("mass_scale", s.mass_scale, "in [1, 1e4]",
+           [](double v) { return v >= 1.0 && v <= 1e4; });
   n.text("preset", s.numerics_preset, numerics_preset_names(),
          [](const std::string&) { return true; });  // checked by apply_numerics_preset
   n.finish();

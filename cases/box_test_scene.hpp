@@ -40,6 +40,15 @@ struct BoxTestScene {
   Material wall = box_test::wall_material(0.0);  // side walls and sleeper
   Material base = box_test::rubber_base(0.0);    // rubber base
   double density = box_test::kDensity;           // kg/m³
+  // /numerics/mass_scale, PFC users' mass (density) scaling: the bodies are simulated
+  // mass_scale times heavier and gravity mass_scale times weaker, so that every weight
+  // and every static force stays as it is while the critical timestep grows by
+  // sqrt(mass_scale). What it changes is inertia: a load cycle at frequency f then
+  // responds as one at f * sqrt(mass_scale) would (docs/TRADEOFFS.md).
+  double mass_scale = 1.0;
+  double simulated_density() const { return density * mass_scale; }
+  // m/s², the gravity of a stage at `factor` × g, weakened by the mass scale.
+  double gravity(double factor) const { return -9.81 * factor / mass_scale; }
   double friction_compaction = box_test::kFrictionCompaction;
   double friction_loading = box_test::kFrictionLoading;
   // The engine's settings the scene file sets: /numerics (dt_safety, dt as fixed_dt,

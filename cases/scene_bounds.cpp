@@ -76,7 +76,8 @@ void check_loading_bounds(const BoxTestScene& s, bool generated) {
       "in (0, " + num(defaults.max_speed) + "] m/s: faster is what the engine takes for a blow-up");
   if (!generated) return;
 
-  const double dt_one = lone_sphere_timestep(s.ball, r, s.density, law, defaults.max_speed);
+  const double dt_one =
+      lone_sphere_timestep(s.ball, r, s.simulated_density(), law, defaults.max_speed);
   require_setup(std::isfinite(dt_one) && dt_one > 0.0,
                 "/materials/density and the ball's stiffness (ball_stiffness, ball_kn, ball_ks)",
                 num(s.density) + " kg/m^3, " + num(s.ball.kn) + " and " + num(s.ball.ks) + " N/m",

@@ -37,6 +37,7 @@ void expect_same_numerics(const BoxTestScene& a, const BoxTestScene& b) {
   EXPECT_EQ(a.ball.ks, b.ball.ks);
   EXPECT_EQ(a.wall.kn, b.wall.kn);
   EXPECT_EQ(a.density, b.density);
+  EXPECT_EQ(a.mass_scale, b.mass_scale);
 }
 
 }  // namespace
@@ -75,9 +76,10 @@ TEST(NumericsPresets, AFieldTheSceneGivesWinsOverThePresetAndIsNamed) {
     EXPECT_EQ(s.sim.dt_safety, 0.123);
     EXPECT_EQ(s.density, 3000.0);
     // Every preset sets the timestep safety; those that set the density name it too.
-    std::vector<std::string> expected{"/numerics/dt_safety"};
+    std::vector<std::string> expected;
     for (const PresetField& f : p.fields)
-      if (f.pointer == "/materials/density") expected.emplace_back(f.pointer);
+      if (f.pointer == "/numerics/dt_safety" || f.pointer == "/materials/density")
+        expected.emplace_back(f.pointer);
     EXPECT_EQ(s.preset_fields_kept, expected);
   }
 }
@@ -91,7 +93,8 @@ TEST(NumericsPresets, ShippedScenesLeaveThePresetsFieldsOut) {
     j["numerics"]["preset"] = "fast";
     const BoxTestScene s = parse_box_test_scene(j);
     EXPECT_TRUE(s.preset_fields_kept.empty());
-    EXPECT_EQ(s.density, 26000.0);
+    EXPECT_EQ(s.mass_scale, 10.0);
+    EXPECT_EQ(s.sim.dt_safety, 1.0);
   }
 }
 
@@ -105,9 +108,30 @@ TEST(NumericsPresets, PresetsDifferFromPaperAndFromEachOther) {
       const bool same = a.sim.dt_safety == b.sim.dt_safety && a.sim.rotation == b.sim.rotation &&
                         a.mass_mode == b.mass_mode && a.max_stage_steps == b.max_stage_steps &&
                         a.gravity_factor == b.gravity_factor && a.ball.kn == b.ball.kn &&
-                        a.wall.kn == b.wall.kn && a.density == b.density;
+                        a.wall.kn == b.wall.kn && a.density == b.density &&
+                        a.mass_scale == b.mass_scale;
       EXPECT_FALSE(same) << presets[i].name << " and " << presets[k].name;
     }
+}
+
+// Mass scaling keeps every weight: a body mass_scale times heavier under gravity
+// mass_scale times weaker, at compaction's factor and at 1 g.
+TEST(NumericsPresets, MassScalingKeepsTheWeights) {
+  json scaled = kScene;
+  scaled["numerics"]["mass_scale"] = 10.0;
+  const BoxTestScene a = parse_box_test_scene(kScene);
+  const BoxTestScene b = parse_box_test_scene(scaled);
+  EXPECT_DOUBLE_EQ(b.simulated_density(), 10.0 * a.simulated_density());
+  EXPECT_DOUBLE_EQ(a.simulated_density(), 2600.0);
+  for (double factor : {1.0, a.gravity_factor}) {
+    EXPECT_DOUBLE_EQ(a.gravity(factor), -9.81 * factor);
+    EXPECT_DOUBLE_EQ(b.simulated_density() * b.gravity(factor),
+                     a.simulated_density() * a.gravity(factor));
+  }
+  json bad = kScene;
+  bad["numerics"]["mass_scale"] = 0.5;
+  const std::string m = test_support::error_message([&] { parse_box_test_scene(bad); });
+  EXPECT_NE(m.find("/numerics/mass_scale = 0.5"), std::string::npos) << m;
 }
 
 TEST(NumericsPresets, AnUnknownNameIsRefusedWithTheNamesAllowed) {

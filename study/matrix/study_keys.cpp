@@ -73,6 +73,8 @@ constexpr StudyKey kOtherKeys[] = {
     number("local_damping", closed_open(0, 1), "numerics", "PFC local damping coefficient"),
     text("preset", "paper|balanced|fast", "numerics",
          "named numerics preset (docs/TRADEOFFS.md); the run's other keys win over it"),
+    number("mass_scale", closed(1, 1e4), "numerics",
+           "mass scaling: bodies this many times heavier, gravity as many times weaker"),
     integer("max_stage_steps", at_least(1000), "numerics",
             "step limit of each settling stage of the preparation"),
     {"contact_law", KeyKind::kLaw, kAny, "", "numerics", "",

@@ -26,6 +26,7 @@ constexpr SceneKey kOtherSceneKeys[] = {
     {"local_damping", "/numerics/local_damping"},
     {"preset", "/numerics/preset"},
     {"max_stage_steps", "/preparation/max_stage_steps"},
+    {"mass_scale", "/numerics/mass_scale"},
     {"ball_stiffness", "/materials/ball_stiffness"},
     {"wall_stiffness", "/materials/wall_stiffness"},
     {"density", "/materials/density"},
