@@ -27,7 +27,7 @@ seed (noise near sqrt(2/n)). Cost is the mean over the variant's replicates of w
 seconds, timesteps and ball-steps (balls x timesteps, summed over the stages), and its
 ratio to the reference's; ball-steps are exact, wall seconds depend on the machine's
 load. Writes tradeoff.csv (every number), tradeoff.md (the tables docs/TRADEOFFS.md
-quotes) and pareto.png (cost against worst error, one point per variant, the --mark
+quotes) and pareto.png (ball-steps against worst error, one point per variant, the --mark
 variants starred) into --out, and prints the Markdown.
 """
 import argparse
@@ -196,7 +196,7 @@ def pareto_plot(path, reference, variants, table, marks):
         w = worst(table[v.name])
         if w is None:
             continue
-        x, star = v.wall / reference.wall, v.name in marks.values()
+        x, star = v.ball_steps / reference.ball_steps, v.name in marks.values()
         ax.scatter([x], [max(w, 1e-2)], marker="*" if star else "o", s=160 if star else 30,
                    color="tab:red" if star else "tab:blue", zorder=3)
         label = next((p for p, n in marks.items() if n == v.name), v.name)
@@ -207,7 +207,8 @@ def pareto_plot(path, reference, variants, table, marks):
             color="grey", va="bottom")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("cost: wall time per run, relative to the reference")
+    ax.set_xlabel("cost: ball-steps per run, relative to the reference "
+                  "(exact; wall time in the table)")
     ax.set_ylabel("worst error over the quantities, |Δ| / scatter")
     ax.set_title(f"Speed against accuracy, {reference.balls:,.0f}-ball box test, "
                  f"{reference.runs} common seeds", fontsize=10)
