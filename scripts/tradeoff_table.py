@@ -17,7 +17,8 @@ quantity q of QUANTITIES:
     error   = |delta| / scatter
 
 An error below 1 is below what one more seed would change: noise, not a cost of the
-variant. `worst` is the largest error over the quantities; a variant is "within the
+variant. With `--scatter pooled` the scatter is every sample's sd pooled instead
+(pooled_scatter), a steadier estimate than three seeds of the reference give. `worst` is the largest error over the quantities; a variant is "within the
 scatter" when worst <= 1. `noise` is the standard error of delta / scatter, the sample
 standard deviation of the paired differences over sqrt(n), the median over the
 quantities: how finely n seeds resolve a shift. A variant that changes only the loading
@@ -86,8 +87,26 @@ class Variant:
         self.runs = len(runs)
 
 
-def compare(variant, reference):
-    """{key: (variant mean, delta, scatter, error, noise)}; None entries where undefined."""
+def pooled_scatter(variants):
+    """{key: (pooled sd, degrees of freedom)}: the sample standard deviations of every
+    variant pooled, sqrt(sum((n_i - 1) s_i^2) / sum(n_i - 1)). A check on the
+    reference's own sd, which three seeds estimate only to within a factor of about 3
+    either way; assumes the variants scatter alike."""
+    out = {}
+    for key, _, _ in QUANTITIES:
+        total, df = 0.0, 0
+        for v in variants:
+            s = summarize([r[key] for r in v.by_replicate.values()])
+            if s.sd is not None:
+                total += s.df * s.sd ** 2
+                df += s.df
+        out[key] = (math.sqrt(total / df) if df else None, df)
+    return out
+
+
+def compare(variant, reference, scatters=None):
+    """{key: (variant mean, delta, scatter, error, noise)}; None entries where undefined.
+    The scatter is the reference's sd, or scatters[key] when given."""
     out = {}
     common = sorted(set(variant.by_replicate) & set(reference.by_replicate))
     for key, _, _ in QUANTITIES:
@@ -96,7 +115,8 @@ def compare(variant, reference):
                  if variant.by_replicate[k][key] is not None
                  and reference.by_replicate[k][key] is not None]
         delta = math.fsum(diffs) / len(diffs) if diffs else None
-        scatter = summarize([v[key] for v in reference.by_replicate.values()]).sd
+        scatter = (scatters[key] if scatters is not None
+                   else summarize([v[key] for v in reference.by_replicate.values()]).sd)
         error = (abs(delta) / scatter if delta is not None and scatter else None)
         spread = summarize(diffs).sd
         noise = (spread / math.sqrt(len(diffs)) / scatter
@@ -143,7 +163,7 @@ def fmt_error(e):
     return "–" if e is None else f"{e:.2f}"
 
 
-def markdown(reference, variants, table):
+def markdown(reference, variants, table, pooled, scatter_name):
     lines = ["| variant | runs | ball-steps (× ref) | wall (× ref) | "
              + " | ".join(SHORT) + " | worst | noise | within scatter |",
              "|---" * (len(SHORT) + 7) + "|"]
@@ -156,10 +176,14 @@ def markdown(reference, variants, table):
             + " | ".join(fmt_error(errors[k][3]) for k, _, _ in QUANTITIES)
             + f" | {fmt_error(w)} | {fmt_error(median_noise(errors))} |"
             f" {'–' if w is None else 'yes' if w <= 1 else 'no'} |")
-    lines += ["", "| quantity | reference mean | scatter (sd over seeds) |", "|---|---|---|"]
+    lines += ["", f"Errors in units of the {scatter_name} scatter.", "",
+              "| quantity | reference mean | reference's scatter (sd over seeds) |"
+              " every sample's scatter, pooled (degrees of freedom) |", "|---|---|---|---|"]
     for key, label, f in QUANTITIES:
         s = summarize([v[key] for v in reference.by_replicate.values()])
-        lines.append(f"| {label} | {f.format(s.mean)} | {f.format(s.sd)} |")
+        sd, df = pooled[key]
+        lines.append(f"| {label} | {f.format(s.mean)} | {f.format(s.sd)} |"
+                     f" {'–' if sd is None else f.format(sd)} ({df}) |")
     lines += ["", f"Reference: {reference.runs} runs, {reference.balls:,.0f} balls, "
               f"{reference.steps:,.0f} timesteps, {reference.ball_steps:.3g} ball-steps, "
               f"{reference.wall:.0f} s of one core on average."]
@@ -222,6 +246,9 @@ def main(argv=None):
     p.add_argument("archives", nargs="+", metavar="ARCHIVE")
     p.add_argument("--reference", default="reference", help="the reference sample's name")
     p.add_argument("--out", help="folder for tradeoff.csv, tradeoff.md and pareto.png")
+    p.add_argument("--scatter", choices=("reference", "pooled"), default="reference",
+                   help="the scatter errors are measured in: the reference's sd over its "
+                        "seeds (default), or every sample's sd pooled")
     p.add_argument("--mark", default="",
                    help="label=sample pairs, comma-separated: variants to star in the plot")
     a = p.parse_args(argv)
@@ -234,8 +261,10 @@ def main(argv=None):
     except ArchiveError as e:
         print(f"tradeoff_table: {e}", file=sys.stderr)
         return 2
-    table = {v.name: compare(v, reference) for v in variants}
-    text = markdown(reference, variants, table)
+    pooled = pooled_scatter(variants)
+    scatters = {k: sd for k, (sd, _) in pooled.items()} if a.scatter == "pooled" else None
+    table = {v.name: compare(v, reference, scatters) for v in variants}
+    text = markdown(reference, variants, table, pooled, a.scatter)
     print(text)
     if a.out:
         os.makedirs(a.out, exist_ok=True)

@@ -76,6 +76,18 @@ class TradeoffTable(unittest.TestCase):
         self.assertAlmostEqual(float(wobbly["settlement_peak_mm_noise"]), 1 / 3, places=6)
         self.assertAlmostEqual(float(self.rows["near"]["settlement_peak_mm_noise"]), 0.0, places=9)
 
+    def test_pooled_scatter_pools_every_samples_variance(self):
+        # Settlement sds: reference 0.2 (2 df), near 0.2 (2), far 0.1414 (1), wobbly
+        # 0.1155 (2): pooled variance (2*0.04 + 2*0.04 + 0.02 + 2*0.01333) / 7.
+        out = os.path.join(self.tmp.name, "pooled_scatter")
+        r = table(self.archive, "--out", out, "--scatter", "pooled")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(os.path.join(out, "tradeoff.csv")) as f:
+            near = {row["variant"]: row for row in csv.DictReader(f)}["near"]
+        pooled = ((2 * 0.04 + 2 * 0.04 + 0.02 + 2 * 0.04 / 3) / 7) ** 0.5
+        self.assertAlmostEqual(float(near["settlement_peak_mm_scatter"]), pooled, places=5)
+        self.assertAlmostEqual(float(near["settlement_peak_mm_error"]), 0.1 / pooled, places=4)
+
     def test_costs_are_ratios_to_the_reference(self):
         far = self.rows["far"]
         self.assertAlmostEqual(float(far["wall_vs_ref"]), 2.0, places=9)
