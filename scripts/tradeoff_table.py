@@ -163,10 +163,12 @@ def fmt_error(e):
     return "–" if e is None else f"{e:.2f}"
 
 
-def markdown(reference, variants, table, pooled, scatter_name):
+def markdown(reference, variants, table, pooled, scatter_name, other):
+    """`other` is the table in the other scatter, whose worst error gets a column."""
+    other_name = "pooled" if scatter_name == "reference" else "reference"
     lines = ["| variant | runs | ball-steps (× ref) | wall (× ref) | "
-             + " | ".join(SHORT) + " | worst | noise | within scatter |",
-             "|---" * (len(SHORT) + 7) + "|"]
+             + " | ".join(SHORT) + f" | worst | noise | within scatter | worst, {other_name} |",
+             "|---" * (len(SHORT) + 8) + "|"]
     for v in variants:
         errors = table[v.name]
         w = worst(errors)
@@ -175,8 +177,10 @@ def markdown(reference, variants, table, pooled, scatter_name):
             f"{v.wall / reference.wall:.2f} | "
             + " | ".join(fmt_error(errors[k][3]) for k, _, _ in QUANTITIES)
             + f" | {fmt_error(w)} | {fmt_error(median_noise(errors))} |"
-            f" {'–' if w is None else 'yes' if w <= 1 else 'no'} |")
-    lines += ["", f"Errors in units of the {scatter_name} scatter.", "",
+            f" {'–' if w is None else 'yes' if w <= 1 else 'no'} |"
+            f" {fmt_error(worst(other[v.name]))} |")
+    lines += ["", f"Errors in units of the {scatter_name} scatter; the last column's in the "
+              f"{other_name} scatter.", "",
               "| quantity | reference mean | reference's scatter (sd over seeds) |"
               " every sample's scatter, pooled (degrees of freedom) |", "|---|---|---|---|"]
     for key, label, f in QUANTITIES:
@@ -262,9 +266,12 @@ def main(argv=None):
         print(f"tradeoff_table: {e}", file=sys.stderr)
         return 2
     pooled = pooled_scatter(variants)
-    scatters = {k: sd for k, (sd, _) in pooled.items()} if a.scatter == "pooled" else None
-    table = {v.name: compare(v, reference, scatters) for v in variants}
-    text = markdown(reference, variants, table, pooled, a.scatter)
+    pooled_sd = {k: sd for k, (sd, _) in pooled.items()}
+    by_reference = {v.name: compare(v, reference) for v in variants}
+    by_pooled = {v.name: compare(v, reference, pooled_sd) for v in variants}
+    table, other = ((by_pooled, by_reference) if a.scatter == "pooled"
+                    else (by_reference, by_pooled))
+    text = markdown(reference, variants, table, pooled, a.scatter, other)
     print(text)
     if a.out:
         os.makedirs(a.out, exist_ok=True)
