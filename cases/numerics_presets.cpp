@@ -36,9 +36,9 @@ constexpr PresetField kFast[] = {
     {"/numerics/mass_scale", "10"},
 };
 constexpr NumericsPreset kPresets[] = {
-    {"paper", "the paper's numerics (the scene defaults)", kPaper},
-    {"balanced", "dt_safety 1, clump masses summed over the balls", kBalanced},
-    {"fast", "balanced, with the masses scaled 10 times and gravity weakened as much", kFast},
+    {"paper", kPaper},
+    {"balanced", kBalanced},
+    {"fast", kFast},
 };
 
 }  // namespace

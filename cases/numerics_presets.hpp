@@ -5,8 +5,9 @@
 // scripts/tradeoff_table.py from cases/tradeoff_study.json). It fills the fields the
 // scene leaves out, before the scene is read, so that a field the scene gives itself
 // always wins and the archive's scene plus the preset's name say every value a run used.
-// The presets touch numerics only (timestep, step limits, mass properties, contact
-// stiffness); the test itself (box, sleeper, loads, frequency) stays the scene's.
+// The presets touch numerics only (timestep, step limits, mass properties and mass
+// scaling, contact stiffness); the test itself (box, sleeper, loads, frequency) stays
+// the scene's.
 #pragma once
 
 #include <nlohmann/json_fwd.hpp>
@@ -24,7 +25,6 @@ struct PresetField {
 
 struct NumericsPreset {
   std::string_view name;
-  std::string_view description;  // what it trades, from docs/TRADEOFFS.md's table
   std::span<const PresetField> fields;
 };
 

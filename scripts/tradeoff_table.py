@@ -35,7 +35,6 @@ import argparse
 import csv
 import math
 import os
-import re
 import sys
 
 from ballast_archive import ArchiveError, open_archive
@@ -57,13 +56,6 @@ SHORT = ("settl. peak", "permanent", "resilient", "rot. mean", "rot. max", "max 
          "porosity", "mean force")
 
 
-def replicate_number(run):
-    m = re.search(r"-r(\d+)$", run.id)
-    if not m:
-        raise ArchiveError(f"{run.where}: the id does not end in -r<replicate>")
-    return int(m.group(1))
-
-
 def run_cost(run):
     """(wall seconds, timesteps, ball-steps) of one run, over all its stages."""
     stages = run.group["stages"]
@@ -79,7 +71,7 @@ def values(run):
 class Variant:
     def __init__(self, name, runs):
         self.name = name
-        self.by_replicate = {replicate_number(r): values(r) for r in runs}
+        self.by_replicate = {int(r.attribute("replicate")): values(r) for r in runs}
         costs = [run_cost(r) for r in runs]
         self.wall, self.steps, self.ball_steps = (math.fsum(c[i] for c in costs) / len(costs)
                                                   for i in range(3))
