@@ -5,7 +5,7 @@ JOBS   ?= $(shell nproc)
 MAKEFLAGS += --no-print-directory
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build run test test-fast test-slow test-sanitize mutations bench bench-peers format clean
+.PHONY: all deps configure build run test test-fast test-slow test-sanitize test-slurm mutations bench bench-peers format clean
 
 all: build
 
@@ -55,6 +55,20 @@ test-sanitize: deps
 	@cmake --build $(BUILD)-sanitize -j $(JOBS)
 	@cd $(BUILD)-sanitize && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	  UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -LE slow
+
+# scripts/slurm_study.sh on a real one-node Slurm (docs/STUDY.md, "On a cluster"):
+# scripts/slurm_local_cluster.sh installs Debian's Slurm and munge if missing and starts
+# them; tests/slurm/test_slurm_cluster.py submits a small study as 2 shards and a merge
+# job, requeues one shard and cancels the other in the middle of a run, submits again,
+# and compares the merged archive with the study run locally. The cluster is stopped
+# afterwards whatever the outcome, and the test's status kept. Needs root; not part of
+# `make test`. About 1.7 minutes on 2 cores, Slurm's install included.
+test-slurm: build
+	@status=0; \
+	  { bash scripts/slurm_local_cluster.sh start && \
+	    /usr/bin/python3 tests/slurm/test_slurm_cluster.py $(BUILD)/study/ballast; } || status=$$?; \
+	  bash scripts/slurm_local_cluster.sh stop || [ $$status -ne 0 ] || status=1; \
+	  exit $$status
 
 # Each one-line engine mutation in tests/mutations.tsv must make its test fail
 # (docs/TESTING.md); restores every file it touches. About 20 minutes on 2 cores.

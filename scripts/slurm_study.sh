@@ -11,13 +11,15 @@
 # on the task's CPUs (SLURM_CPUS_PER_TASK, else 1), logging to OUT_DIR/shard-K-of-N.log.
 # --resume makes a requeued or resubmitted task finish its shard instead of starting
 # again. The merge job (afterany: it also runs when a task failed or ran out of time,
-# and then names the missing runs) writes OUT_DIR/<study name>.h5.
+# and then names the missing runs) writes OUT_DIR/<study name>.h5; run again with the
+# same OUT_DIR (after a failure), it first moves the earlier merge aside to
+# OUT_DIR/<study name>.h5.before-job-ID, since `ballast merge` refuses an -o that exists.
 # BALLAST: the ballast binary (default: build/study/ballast next to this script).
 # Prints the two job ids.
 set -euo pipefail
 
 if [ $# -lt 3 ]; then
-  sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 fi
 study=$(realpath "$1")
@@ -40,8 +42,10 @@ array=$(sbatch --parsable --job-name="$name" --array="1-$shards" \
   --output="$out/shard-%a-of-$shards.log" "$@" \
   --wrap="OMP_NUM_THREADS=\${SLURM_CPUS_PER_TASK:-1} '$ballast' study '$study' -o \"$shard.h5\" --shard \${SLURM_ARRAY_TASK_ID}/$shards --resume --progress plain")
 array=${array%%;*}
+merged="$out/$name.h5"
+aside="$merged.before-job-\${SLURM_JOB_ID}"
 merge=$(sbatch --parsable --job-name="$name-merge" --dependency="afterany:$array" \
   --output="$out/merge.log" "$@" \
-  --wrap="'$ballast' merge $(for k in $(seq 1 "$shards"); do printf "'%s' " "$out/shard-$k-of-$shards.h5"; done)-o '$out/$name.h5'")
+  --wrap="if [ -e '$merged' ]; then mv '$merged' \"$aside\" && echo \"moved the earlier merge aside: $aside\"; fi; '$ballast' merge $(for k in $(seq 1 "$shards"); do printf "'%s' " "$out/shard-$k-of-$shards.h5"; done)-o '$merged'")
 merge=${merge%%;*}
 echo "array job $array ($shards shards), merge job $merge -> $out/$name.h5"
