@@ -138,6 +138,10 @@ struct ContactList {
   void set_history(bool on);
   bool has_history() const { return history_; }
 
+  // Every field, for checkpoints (engine/state_io.hpp; defined in simulation_state.cpp).
+  template <class Io>
+  void state_fields(Io& io);
+
  private:
   bool history_ = false;
 };

@@ -33,6 +33,8 @@
 namespace ballast {
 
 struct IntegrationReport;  // integrator.hpp
+class StateWriter;         // state_io.hpp
+class StateReader;
 
 struct SimulationSettings {
   Vec3 domain_lo = Vec3::Zero();  // m: every ball centre must stay in [lo, hi]
@@ -170,7 +172,19 @@ class Simulation {
   ContactStats contacts() const;
   double unbalanced_force_ratio() const;
 
+  // ---- checkpoints (engine/state_io.hpp; simulation_state.cpp) ----
+  // Writes every field the next steps read, settings included: a simulation that
+  // loads it steps on bit for bit as this one would, on the same number of threads.
+  // Left out: the servos' target functions (code, not data: the caller sets them again
+  // with set_servo_target before the next step), the log stream, and the thread
+  // shares and phase timers, which move no bit.
+  void save_state(StateWriter& out) const;
+  // Replaces this simulation's whole state by one save_state wrote; keeps the log.
+  void load_state(StateReader& in);
+
  private:
+  template <class Io>
+  void state_fields(Io& io);
   void validate() const;
   void rebuild_neighbours();
   void update_timestep();
