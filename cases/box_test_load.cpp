@@ -4,10 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <ostream>
+#include <stdexcept>
 
+#include "cases/box_test_checkpoint.hpp"
 #include "cases/box_test_zones.hpp"
 #include "cases/contact_census.hpp"
+#include "cases/cycle_recorder.hpp"
 #include "engine/clump_shape.hpp"
 #include "engine/porosity.hpp"
 
@@ -86,19 +90,28 @@ void measure_porosity(const BoxTestScene& s, const Simulation& sim, double x0, d
   }
 }
 
-}  // namespace
+using Clock = std::chrono::steady_clock;
 
-void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, std::ostream* log) {
-  const double x0 = 0.5 * (s.length - s.sleeper_length), x1 = x0 + s.sleeper_length;
-  const double top = bed_top(sim, x0, x1);
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// Stage 4's first part: the sleeper placed 1 mm above the bed, brought down to the
+// preload and seated; what the cycles start from.
+CycleLoop seat_sleeper(const BoxTestScene& s, Simulation& sim, BoxTestResult& out,
+                       std::ostream* log) {
+  CycleLoop loop;
+  loop.x0 = 0.5 * (s.length - s.sleeper_length);
+  loop.x1 = loop.x0 + s.sleeper_length;
+  const double top = bed_top(sim, loop.x0, loop.x1);
   // The sleeper: a rigid block over the full width, 1 mm above the bed.
   Wall sleeper;
   sleeper.name = "sleeper";
   sleeper.shape = WallShape::Box;
-  sleeper.lo = Vec3(x0, -0.05 * s.width, top + 1e-3);
-  sleeper.hi = Vec3(x1, 1.05 * s.width, top + 1e-3 + s.sleeper_height);
+  sleeper.lo = Vec3(loop.x0, -0.05 * s.width, top + 1e-3);
+  sleeper.hi = Vec3(loop.x1, 1.05 * s.width, top + 1e-3 + s.sleeper_height);
   sleeper.material = box_test::with_friction(s.wall, s.friction_loading);
-  const Index wall = sim.add_wall(sleeper);
+  const Index wall = loop.wall = sim.add_wall(sleeper);
   Servo servo;
   servo.walls = {wall};
   servo.axis = -Vec3::UnitZ();
@@ -106,8 +119,8 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, s
   servo.target_force = [preload](double) { return preload; };
   servo.max_speed = s.sleeper_max_speed;
   servo.gain = s.sleeper_gain;
-  const Index servo_id = sim.add_servo(servo);
-  measure_porosity(s, sim, x0, x1, top, out);
+  loop.servo = sim.add_servo(servo);
+  measure_porosity(s, sim, loop.x0, loop.x1, top, out);
   if (log)
     *log << "stage 4: sleeper " << s.sleeper_length * 1e3 << " mm long on the bed at " << top * 1e3
          << " mm; grid porosity under it " << out.porosity_grid << "\n";
@@ -115,77 +128,112 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, s
   // Seat the sleeper: down to the bed until it carries the preload, then let the
   // bed come to equilibrium under it.
   sim.prepare();
-  for (long k = 0; k < s.max_stage_steps && sim.servos()[servo_id].measured_force < 0.95 * preload;
-       ++k)
+  for (long k = 0;
+       k < s.max_stage_steps && sim.servos()[loop.servo].measured_force < 0.95 * preload; ++k)
     sim.step();
   out.stages.push_back(settle(sim, "preload", s.equilibrium_ratio, s.max_stage_steps, log,
                               s.seating_creep_rule ? SettleRule::kSeated : SettleRule::kRatio,
                               [&sim, wall] { return -sim.walls()[wall].displacement.z(); }));
   if (log) {
-    const SleeperBearing b = snapshot_contacts(sim, wall).sleeper;
+    const SleeperBearing b = sleeper_bearing(sim, wall);
     *log << "  sleeper bears on " << b.bodies << " particles (" << b.contacts
          << " contacts; force max " << b.max << " N, median " << b.p50 << " N)\n";
   }
 
   // Cycles: F(t) = (Fmin + Fmax)/2 − (Fmax − Fmin)/2·cos(2πf(t − t0)).
-  const double t0 = sim.time();
-  sim.set_servo_target(servo_id, sinusoidal_load(s.preload, s.peak_load, s.frequency, t0));
+  loop.t0 = sim.time();
+  sim.set_servo_target(loop.servo, sinusoidal_load(s.preload, s.peak_load, s.frequency, loop.t0));
   sim.reset_motion_reference();
   out.before = snapshot_contacts(sim, wall);
   out.near_before = count_near_pairs(sim, near_pair_gaps());
   out.position_start = sim.bodies().position;
-  const double z0 = sim.walls()[wall].displacement.z();
+  out.zones.surface = top;
+  loop.z0 = sim.walls()[wall].displacement.z();
   const double period = 1.0 / s.frequency;
-  const double t_peak = t0 + 0.5 * period, t_end = t0 + s.cycles * period;
-  std::vector<Vec3> rotation_peak;
-  bool peak_done = false;
-  double err2 = 0.0;
-  long samples = 0;
-  const auto start = std::chrono::steady_clock::now();
-  const long step0 = sim.step_count();
-  const EnergyBudget energy0 = sim.energy();
-  while (sim.time() < t_end) {
+  loop.t_peak = loop.t0 + 0.5 * period;
+  loop.t_end = loop.t0 + s.cycles * period;
+  loop.step0 = sim.step_count();
+  loop.energy0 = sim.energy();
+  loop.cycles = CycleRecorder(s, sim, wall, loop.servo, loop.x0, loop.x1);
+  return loop;
+}
+
+// Stage 4's cycles, from wherever `loop` stands (the start of loading, or a
+// checkpoint), writing checkpoints as `plan` asks; then what the cycles measured.
+// run_start: when this process started the run.
+void run_cycles(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, CycleLoop& loop,
+                std::ostream* log, const CheckpointPlan& plan,
+                const std::vector<ClumpTemplate>& templates, Clock::time_point run_start) {
+  const Clock::time_point start = Clock::now();
+  const double loop_before = loop.seconds, run_before = loop.run_seconds;
+  Clock::time_point last_checkpoint = start;
+  const auto checkpoint = [&] {
+    CycleLoop at = loop;
+    at.seconds = loop_before + seconds_since(start);
+    at.run_seconds = run_before + seconds_since(run_start);
+    // A checkpoint is insurance, not a result: one the file system refuses (a full
+    // disk) is reported and the run goes on; the next interval tries again.
+    try {
+      write_checkpoint(plan, sim, out, at, templates);
+    } catch (const std::runtime_error& e) {
+      if (log) *log << "warning: " << e.what() << "; the run goes on without it\n";
+    }
+    last_checkpoint = Clock::now();
+  };
+  const bool checkpoints = !plan.path.empty();
+  // A run killed during its first cycle resumes here, not from a new preparation.
+  if (checkpoints && sim.step_count() == loop.step0) checkpoint();
+  const Index wall = loop.wall;
+  while (sim.time() < loop.t_end) {
     sim.step();
-    const Servo& sv = sim.servos()[servo_id];
+    const Servo& sv = sim.servos()[loop.servo];
     const double err = sv.measured_force - sv.target_now;
     out.max_force_error = std::max(out.max_force_error, std::abs(err));
-    err2 += err * err;
-    ++samples;
-    if ((sim.step_count() - step0) % s.series_every == 0) {
-      out.time.push_back(sim.time() - t0);
+    loop.err2 += err * err;
+    ++loop.samples;
+    if (loop.cycles.sampling_series() && (sim.step_count() - loop.step0) % s.series_every == 0) {
+      out.time.push_back(sim.time() - loop.t0);
       out.target_force.push_back(sv.target_now);
       out.sleeper_force.push_back(sv.measured_force);
-      out.settlement.push_back(z0 - sim.walls()[wall].displacement.z());
+      out.settlement.push_back(loop.z0 - sim.walls()[wall].displacement.z());
     }
-    if (!peak_done && sim.time() >= t_peak) {
-      peak_done = true;
+    if (!loop.peak_done && sim.time() >= loop.t_peak) {
+      loop.peak_done = true;
       out.at_peak = snapshot_contacts(sim, wall);
       out.position_peak = sim.bodies().position;
-      rotation_peak = sim.bodies().rotation;
-      out.settlement_peak = z0 - sim.walls()[wall].displacement.z();
+      loop.rotation_peak = sim.bodies().rotation;
+      out.settlement_peak = loop.z0 - sim.walls()[wall].displacement.z();
     }
+    const long done = loop.cycles.cycles_done();
+    loop.cycles.after_step(sim, out.cycles);
+    if (!checkpoints || sim.time() >= loop.t_end) continue;
+    const bool cycle_ended = loop.cycles.cycles_done() != done;
+    if ((cycle_ended && plan.every_cycles > 0 &&
+         loop.cycles.cycles_done() % plan.every_cycles == 0) ||
+        (plan.every_minutes > 0.0 && (sim.step_count() & 255) == 0 &&
+         seconds_since(last_checkpoint) >= 60.0 * plan.every_minutes))
+      checkpoint();
   }
-  out.stages.push_back(
-      {"cycle", sim.step_count() - step0, sim.time() - t0,
-       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-       sim.unbalanced_force_ratio(), ""});
-  out.stages.back().book_energy(energy0, sim.energy());
+  out.stages.push_back({"cycle", sim.step_count() - loop.step0, sim.time() - loop.t0,
+                        loop_before + seconds_since(start), sim.unbalanced_force_ratio(), ""});
+  out.stages.back().book_energy(loop.energy0, sim.energy());
   check_cycle_energy(sim, out.stages.back());
-  out.rms_force_error = samples ? std::sqrt(err2 / samples) : 0.0;
+  out.rms_force_error = loop.samples ? std::sqrt(loop.err2 / loop.samples) : 0.0;
   out.after = snapshot_contacts(sim, wall);
   out.position_end = sim.bodies().position;
   const std::vector<Vec3> zero(sim.bodies().size(), Vec3::Zero());
-  out.rotation_deg_loading = angles(rotation_peak, zero);
-  out.rotation_deg_unloading = angles(sim.bodies().rotation, rotation_peak);
+  out.rotation_deg_loading = angles(loop.rotation_peak, zero);
+  out.rotation_deg_unloading = angles(sim.bodies().rotation, loop.rotation_peak);
   out.rotation_deg_cycle = angles(sim.bodies().rotation, zero);
   out.rotation_loading = stats_of(out.rotation_deg_loading);
   out.rotation_unloading = stats_of(out.rotation_deg_unloading);
   out.rotation_cycle = stats_of(out.rotation_deg_cycle);
   out.max_displacement_peak = max_distance(out.position_peak, out.position_start);
   out.max_displacement_after = max_distance(out.position_end, out.position_start);
-  out.permanent_settlement = z0 - sim.walls()[wall].displacement.z();
-  out.resilient_settlement = out.settlement_peak - out.permanent_settlement;
-  out.zones = measure_zones(out, x0, x1, top, s.zone_depth);
+  out.permanent_settlement = loop.z0 - sim.walls()[wall].displacement.z();
+  // The last cycle's rebound (the first's for one cycle).
+  out.resilient_settlement = out.cycles.settlement_peak.back() - out.permanent_settlement;
+  out.zones = measure_zones(out, loop.x0, loop.x1, out.zones.surface, s.zone_depth);
   out.loaded = true;
   if (log)
     *log << "  cycle: settlement " << out.settlement_peak * 1e3 << " mm at peak, permanent "
@@ -193,22 +241,49 @@ void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, s
          << " N, rms " << out.rms_force_error << " N\n";
 }
 
+}  // namespace
+
+void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, std::ostream* log) {
+  CycleLoop loop = seat_sleeper(s, sim, out, log);
+  run_cycles(s, sim, out, loop, log, CheckpointPlan{}, {}, Clock::now());
+}
+
 BoxTestResult run_box_test(const BoxTestScene& s, std::ostream* log,
-                           const std::function<void(const Simulation&)>& at_end) {
-  const auto start = std::chrono::steady_clock::now();
+                           const std::function<void(const Simulation&)>& at_end,
+                           const CheckpointPlan& plan) {
+  const Clock::time_point start = Clock::now();
   if (log && !s.numerics_preset.empty()) {
     *log << "numerics preset '" << s.numerics_preset << "' (docs/TRADEOFFS.md)";
     for (const std::string& field : s.preset_fields_kept) *log << "; the scene's own " << field;
     *log << "\n";
   }
-  PreparedBed bed = prepare_box_test(s, log);
+  const bool resuming = plan.resume && !plan.path.empty() && std::filesystem::exists(plan.path);
+  SimulationSettings quiet;
+  quiet.log = log;
+  PreparedBed bed =
+      resuming ? PreparedBed{Simulation(quiet), {}, 0.0, {}} : prepare_box_test(s, log);
   BoxTestResult out;
-  out.scene_name = s.name;
-  out.stages = bed.stages;
   Simulation& sim = bed.sim;
-  if (s.stop_after.empty()) {
-    load_box_test(s, sim, out, log);
+  double before = 0.0;  // wall seconds the run took before its last checkpoint
+  if (resuming) {
+    LoadCheckpoint c = read_checkpoint(plan, sim);
+    out = std::move(c.result);
+    bed.templates = std::move(c.templates);
+    before = c.loop.run_seconds;
+    sim.set_servo_target(c.loop.servo,
+                         sinusoidal_load(s.preload, s.peak_load, s.frequency, c.loop.t0));
+    if (log)
+      *log << c.log << "resumed from checkpoint " << plan.path << ": step " << sim.step_count()
+           << ", " << c.loop.cycles.cycles_done() << " of " << s.cycles << " cycles done\n";
+    run_cycles(s, sim, out, c.loop, log, plan, bed.templates, start);
+  } else if (s.stop_after.empty()) {
+    out.scene_name = s.name;
+    out.stages = bed.stages;
+    CycleLoop loop = seat_sleeper(s, sim, out, log);
+    run_cycles(s, sim, out, loop, log, plan, bed.templates, start);
   } else {
+    out.scene_name = s.name;
+    out.stages = bed.stages;
     const double x0 = 0.5 * (s.length - s.sleeper_length);
     measure_porosity(s, sim, x0, x0 + s.sleeper_length, bed_top(sim, x0, x0 + s.sleeper_length),
                      out);
@@ -238,8 +313,7 @@ BoxTestResult run_box_test(const BoxTestScene& s, std::ostream* log,
     c.shapes = measure_clump_shapes(c.templates, virtual_sphere_radius(c.params), {});
     out.clumps = std::move(c);
   }
-  out.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.wall_seconds = before + seconds_since(start);
   if (at_end) at_end(sim);
   return out;
 }

@@ -11,6 +11,7 @@
 #include <functional>
 #include <iosfwd>
 
+#include "cases/box_test_checkpoint.hpp"
 #include "cases/box_test_result.hpp"
 #include "cases/box_test_scene.hpp"
 
@@ -19,8 +20,11 @@ namespace ballast {
 // Prepares (box_test_prepare.hpp) and loads; progress lines go to `log`. `at_end`,
 // when given, sees the simulation after the last stage that ran (the bed after
 // preparation, compaction or the load cycle: `ballast run --export-packing`).
+// `plan` says where the load cycles write checkpoints and whether the run resumes
+// from one (box_test_checkpoint.hpp); the result is the same bits either way.
 BoxTestResult run_box_test(const BoxTestScene& scene, std::ostream* log,
-                           const std::function<void(const Simulation&)>& at_end = {});
+                           const std::function<void(const Simulation&)>& at_end = {},
+                           const CheckpointPlan& plan = {});
 
 // Stage 4 on a prepared bed.
 void load_box_test(const BoxTestScene& scene, Simulation& sim, BoxTestResult& out,

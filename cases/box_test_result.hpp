@@ -69,6 +69,30 @@ struct ClumpSampleRecord {
   std::vector<ClumpShape> shapes;  // measure_clump_shapes(templates), same order
 };
 
+// The state of the bed at the end of one load cycle the scene names
+// (/measurement/snapshot_cycles), from the start of loading.
+struct CycleSnapshot {
+  long cycle = 0;           // 1-based
+  double settlement = 0.0;  // m, the sleeper's, downward positive
+  std::vector<Vec3> position;
+  std::vector<double> rotation_deg;  // accumulated rotation since the start of loading
+};
+
+// One entry per completed load cycle (cycle n ends at t0 + n / frequency): the cheap
+// measures every cycle, how settlement grows with the number of cycles N. Settlements
+// are the sleeper's, downward positive, from the start of loading (m).
+struct CycleRecords {
+  std::vector<double> settlement_peak;    // at the cycle's peak load
+  std::vector<double> settlement_trough;  // at its end (the preload): permanent after cycle n
+  std::vector<double> sleeper_work;       // J, ∫F dδ over the cycle: the load–deformation
+                                          // loop's area plus what it left in the bed
+  std::vector<double> rotation_mean_deg;  // mean over bodies at the cycle's end
+  std::vector<long> sleeper_contacts, sleeper_bodies;  // bearing on the sleeper at peak
+  std::vector<double> porosity_under;  // grid porosity under the sleeper at the cycle's end
+  std::vector<CycleSnapshot> snapshots;
+  std::size_t count() const { return settlement_trough.size(); }
+};
+
 struct BoxTestResult {
   std::string scene_name;
   std::vector<StageReport> stages;
@@ -91,15 +115,19 @@ struct BoxTestResult {
   RotationStats rotation_loading, rotation_unloading, rotation_cycle;
   double max_displacement_peak = 0.0, max_displacement_after = 0.0;  // m
 
-  // Sleeper: settlement (downward positive) from the start of the cycle, m.
+  // Sleeper: settlement (downward positive) from the start of loading, m: at the first
+  // peak, after the last cycle, and the last cycle's rebound (peak − end).
   double settlement_peak = 0.0, permanent_settlement = 0.0, resilient_settlement = 0.0;
   double max_force_error = 0.0, rms_force_error = 0.0;  // N, achieved − target
 
-  // Load-deformation series (Fig 18).
+  // Load-deformation series (Fig 18), sampled during the snapshot cycles only (so
+  // that 10^5 cycles do not fill the memory); time from the start of loading.
   std::vector<double> time, target_force, sleeper_force, settlement;
+  CycleRecords cycles;
 
-  // Per body: positions at the start of loading, at peak load and after the cycle;
-  // accumulated rotations (deg) during loading, unloading and the whole cycle;
+  // Per body: positions at the start of loading, at the first peak load and after the
+  // last cycle; accumulated rotations (deg) during the first loading, from the first
+  // peak to the end (unloading), and over all cycles;
   // template (shape) index.
   std::vector<Vec3> position_start, position_peak, position_end;
   std::vector<double> rotation_deg_loading, rotation_deg_unloading, rotation_deg_cycle;

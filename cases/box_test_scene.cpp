@@ -178,6 +178,9 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& given, const std::string
   me.number("cube_side", s.cube_side, "> 0 m", positive);
   me.number("sphere_radius", s.sphere_radius, "> 0 m", positive);
   me.integer("series_every", s.series_every, ">= 1", [](long v) { return v >= 1; });
+  me.integers("snapshot_cycles", s.snapshot_cycles,
+              "in [1, /sleeper/cycles = " + std::to_string(s.cycles) + "]",
+              [&](long v) { return v >= 1 && v <= s.cycles; });
   me.number("zone_depth", s.zone_depth, "> 0 m", positive);
   me.finish();
   top.finish();

@@ -90,6 +90,10 @@ struct BoxTestScene {
   double cube_side = 0.005;     // m, the paper's porosity grid
   double sphere_radius = 0.05;  // m, measurement spheres
   long series_every = 200;      // steps between load-displacement samples
+  // Cycles (1-based) whose end is snapshotted (positions, rotations) and whose
+  // load–deformation series is sampled; empty: 1, 10, 100, ... and the last
+  // (cases/cycle_recorder.hpp).
+  std::vector<long> snapshot_cycles;
   // m: the top layer whose particles the zone measurements follow (beneath and
   // beside the sleeper): centres within this depth of the bed's surface at the start
   // of loading. Two nominal diameters.

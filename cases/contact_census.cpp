@@ -14,9 +14,7 @@ double percentile(std::vector<double> values, double q) {
   return values[lo] + (at - double(lo)) * (values[hi] - values[lo]);
 }
 
-namespace {
-
-SleeperBearing bearing(const Simulation& sim, Index sleeper) {
+SleeperBearing sleeper_bearing(const Simulation& sim, Index sleeper) {
   SleeperBearing s;
   const ContactList& c = sim.wall_contacts();
   std::vector<double> forces;
@@ -38,8 +36,6 @@ SleeperBearing bearing(const Simulation& sim, Index sleeper) {
   return s;
 }
 
-}  // namespace
-
 ContactSnapshot snapshot_contacts(const Simulation& sim, std::optional<Index> sleeper) {
   ContactSnapshot s;
   s.stats = sim.contacts();
@@ -54,7 +50,7 @@ ContactSnapshot snapshot_contacts(const Simulation& sim, std::optional<Index> sl
   s.force_p50 = percentile(s.force, 0.5);
   s.force_p90 = percentile(s.force, 0.9);
   s.force_p99 = percentile(s.force, 0.99);
-  if (sleeper) s.sleeper = bearing(sim, *sleeper);
+  if (sleeper) s.sleeper = sleeper_bearing(sim, *sleeper);
   return s;
 }
 

@@ -19,6 +19,10 @@ double percentile(std::vector<double> values, double q);
 // percentiles, and, given the sleeper's wall index, its bearing.
 ContactSnapshot snapshot_contacts(const Simulation& sim, std::optional<Index> sleeper = {});
 
+// How the sleeper (wall index `sleeper`) bears on the bed now: its ball contacts, the
+// bodies they belong to, their forces. Cheap: one pass over the wall contacts.
+SleeperBearing sleeper_bearing(const Simulation& sim, Index sleeper);
+
 // Gap tolerances at which near_pairs counts, m: touching (0) up to a quarter of a
 // 36.25 mm sphere's diameter.
 std::vector<double> near_pair_gaps();

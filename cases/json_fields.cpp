@@ -1,5 +1,7 @@
 #include "cases/json_fields.hpp"
 
+#include <algorithm>
+
 namespace ballast {
 
 namespace {
@@ -38,6 +40,19 @@ bool JsonFields::integer(const char* key, long& out, const std::string& allowed,
   if (!v) return false;
   if (!v->is_number_integer() || !ok(v->get<long>())) fail(key, v->dump(), "an integer " + allowed);
   out = v->get<long>();
+  return true;
+}
+
+bool JsonFields::integers(const char* key, std::vector<long>& out, const std::string& allowed,
+                          const std::function<bool(long)>& ok) {
+  const nlohmann::json* v = find(key);
+  if (!v) return false;
+  const auto good = [&ok](const nlohmann::json& e) {
+    return e.is_number_integer() && ok(e.get<long>());
+  };
+  if (!v->is_array() || v->empty() || !std::all_of(v->begin(), v->end(), good))
+    fail(key, v->dump(), "a non-empty array of integers " + allowed);
+  out = v->get<std::vector<long>>();
   return true;
 }
 

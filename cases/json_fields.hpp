@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "engine/errors.hpp"
 
@@ -27,6 +28,9 @@ class JsonFields {
               const std::function<bool(double)>& ok);
   bool integer(const char* key, long& out, const std::string& allowed,
                const std::function<bool(long)>& ok);
+  // A non-empty array of integers, each passing `ok`.
+  bool integers(const char* key, std::vector<long>& out, const std::string& allowed,
+                const std::function<bool(long)>& ok);
   // Any JSON integer in [0, 2^64 - 1] (seeds).
   bool unsigned_integer(const char* key, std::uint64_t& out);
   bool text(const char* key, std::string& out, const std::string& allowed,

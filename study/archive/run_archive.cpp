@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "cases/cycle_recorder.hpp"
 #include "study/archive/clump_archive.hpp"
 #include "study/archive/file_image.hpp"
 #include "study/archive/hdf5_util.hpp"
@@ -58,6 +59,39 @@ void write_zone(hid_t parent, const char* name, const ZoneMotion& z) {
   number_attribute(g, "rotation_loading_deg", z.rotation_loading_deg);
   number_attribute(g, "rotation_unloading_deg", z.rotation_unloading_deg);
   number_attribute(g, "rotation_cycle_deg", z.rotation_cycle_deg);
+}
+
+// The per-cycle records (docs/ARCHIVE.md, "cycles"): compressed 1-D datasets, one
+// entry per cycle, and a group per snapshot cycle.
+void write_cycles(hid_t run, const CycleRecords& c) {
+  Handle g = group(run, "cycles");
+  number_attribute(g, "count", static_cast<long>(c.count()));
+  number_attribute(g, "settlement_log_slope", settlement_log_slope(c.settlement_trough));
+  std::vector<int> cycle(c.count()), contacts(c.sleeper_contacts.begin(), c.sleeper_contacts.end()),
+      bodies(c.sleeper_bodies.begin(), c.sleeper_bodies.end());
+  for (std::size_t k = 0; k < cycle.size(); ++k) cycle[k] = static_cast<int>(k + 1);
+  std::vector<double> resilient(c.count());
+  for (std::size_t k = 0; k < resilient.size(); ++k)
+    resilient[k] = c.settlement_peak[k] - c.settlement_trough[k];
+  compressed_dataset(g, "cycle", cycle, "1");
+  compressed_dataset(g, "settlement_peak", c.settlement_peak, "m");
+  compressed_dataset(g, "settlement_trough", c.settlement_trough, "m");
+  compressed_dataset(g, "resilient_settlement", resilient, "m");
+  compressed_dataset(g, "sleeper_work", c.sleeper_work, "J");
+  compressed_dataset(g, "rotation_mean", c.rotation_mean_deg, "deg");
+  compressed_dataset(g, "sleeper_contacts", contacts, "1");
+  compressed_dataset(g, "sleeper_bodies", bodies, "1");
+  compressed_dataset(g, "porosity_under", c.porosity_under, "1");
+  Handle snaps = group(g, "snapshots");
+  for (const CycleSnapshot& s : c.snapshots) {
+    char name[32];
+    std::snprintf(name, sizeof name, "cycle_%06ld", s.cycle);
+    Handle one = group(snaps, name);
+    number_attribute(one, "cycle", s.cycle);
+    number_attribute(one, "settlement", s.settlement);
+    vec3_set(one, "position", s.position, "m");
+    scalar_set(one, "rotation", s.rotation_deg, "deg");
+  }
 }
 
 void write_contacts(hid_t parent, const char* name, const ContactSnapshot& c) {
@@ -145,6 +179,7 @@ void write_box_test_result(hid_t run, const BoxTestResult& r) {
       write_contacts(contacts, "after", r.after);
     }
   }
+  if (r.loaded) write_cycles(run, r.cycles);
   if (r.loaded) {
     Handle z = group(run, "zones");
     number_attribute(z, "surface", r.zones.surface);
@@ -154,10 +189,10 @@ void write_box_test_result(hid_t run, const BoxTestResult& r) {
   }
   {
     Handle series = group(run, "series");
-    scalar_set(series, "time", r.time, "s");
-    scalar_set(series, "target_force", r.target_force, "N");
-    scalar_set(series, "sleeper_force", r.sleeper_force, "N");
-    scalar_set(series, "settlement", r.settlement, "m");
+    compressed_dataset(series, "time", r.time, "s");
+    compressed_dataset(series, "target_force", r.target_force, "N");
+    compressed_dataset(series, "sleeper_force", r.sleeper_force, "N");
+    compressed_dataset(series, "settlement", r.settlement, "m");
   }
   {
     Handle p = group(run, "particles");

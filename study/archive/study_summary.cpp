@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <numeric>
 #include <ostream>
 
@@ -47,35 +48,39 @@ SummaryRow read_row(hid_t g, const std::string& where) {
     if (has_attribute(peak, "sleeper_bodies"))
       r.sleeper_bodies = double(read_int_attribute(peak, "sleeper_bodies"));
   }
+  if (r.loaded && has_link(g, "cycles")) {
+    Handle cycles(H5Gopen2(g, "cycles", H5P_DEFAULT), H5Gclose, "open cycles of " + where);
+    r.cycles = read_int_attribute(cycles, "count");
+    r.permanent_mm = read_double_attribute(g, "permanent_settlement") * 1e3;
+    r.log_slope_mm = read_double_attribute(cycles, "settlement_log_slope") * 1e3;
+  }
   return r;
 }
 
-// Per sample with two or more loaded runs: "mean ± half-width" of the 95 % interval.
-void print_replicates(std::ostream& out, const std::vector<SummaryRow>& rows) {
+struct Column {
+  const char* label;
+  double SummaryRow::*field;
+  const char* format;
+};
+
+// Per sample with two or more runs that `counts` takes: "mean ± half-width" of the
+// 95 % interval of each column, under `title`.
+void print_replicates(std::ostream& out, const std::vector<SummaryRow>& rows,
+                      const std::function<bool(const SummaryRow&)>& counts,
+                      const std::string& title, const std::vector<Column>& columns) {
   std::vector<std::string> samples;
   for (const SummaryRow& r : rows)
-    if (r.ok && r.loaded && std::find(samples.begin(), samples.end(), r.sample) == samples.end())
+    if (counts(r) && std::find(samples.begin(), samples.end(), r.sample) == samples.end())
       samples.push_back(r.sample);
-  struct Column {
-    const char* label;
-    double SummaryRow::*field;
-    const char* format;
-  };
-  static const Column columns[] = {{"porosity", &SummaryRow::porosity, "%.3f ± %.3f"},
-                                   {"rot (deg)", &SummaryRow::rotation_deg, "%.3f ± %.3f"},
-                                   {"disp. (mm)", &SummaryRow::displacement_mm, "%.2f ± %.2f"},
-                                   {"settl. (mm)", &SummaryRow::settlement_mm, "%.3f ± %.3f"},
-                                   {"resil. (mm)", &SummaryRow::resilient_mm, "%.3f ± %.3f"},
-                                   {"bearing", &SummaryRow::sleeper_bodies, "%.1f ± %.1f"}};
   bool header = false;
   char line[400], cell[64];
   for (const std::string& sample : samples) {
     std::vector<const SummaryRow*> runs;
     for (const SummaryRow& r : rows)
-      if (r.ok && r.loaded && r.sample == sample) runs.push_back(&r);
+      if (counts(r) && r.sample == sample) runs.push_back(&r);
     if (runs.size() < 2) continue;
     if (!header) {
-      out << "\nover replicates: mean ± half-width of the 95 % interval (Student's t)\n";
+      out << "\n" << title << ": mean ± half-width of the 95 % interval (Student's t)\n";
       std::snprintf(line, sizeof line, "%-10s %3s", "sample", "n");
       out << line;
       for (const Column& c : columns) {
@@ -97,6 +102,28 @@ void print_replicates(std::ostream& out, const std::vector<SummaryRow>& rows) {
     }
     out << "\n";
   }
+}
+
+void print_replicates(std::ostream& out, const std::vector<SummaryRow>& rows) {
+  print_replicates(out, rows, [](const SummaryRow& r) { return r.ok && r.loaded; },
+                   "over replicates",
+                   {{"porosity", &SummaryRow::porosity, "%.3f ± %.3f"},
+                    {"rot (deg)", &SummaryRow::rotation_deg, "%.3f ± %.3f"},
+                    {"disp. (mm)", &SummaryRow::displacement_mm, "%.2f ± %.2f"},
+                    {"settl. (mm)", &SummaryRow::settlement_mm, "%.3f ± %.3f"},
+                    {"resil. (mm)", &SummaryRow::resilient_mm, "%.3f ± %.3f"},
+                    {"bearing", &SummaryRow::sleeper_bodies, "%.1f ± %.1f"}});
+  // Runs of several cycles, grouped by sample and cycle count together: the
+  // settlement after N cycles and its growth per decade of N.
+  std::vector<long long> counts;
+  for (const SummaryRow& r : rows)
+    if (r.ok && r.cycles >= 2 && std::find(counts.begin(), counts.end(), r.cycles) == counts.end())
+      counts.push_back(r.cycles);
+  for (long long n : counts)
+    print_replicates(out, rows, [n](const SummaryRow& r) { return r.ok && r.cycles == n; },
+                     "after " + std::to_string(n) + " load cycles",
+                     {{"perm. (mm)", &SummaryRow::permanent_mm, "%.3f ± %.3f"},
+                      {"mm/decade", &SummaryRow::log_slope_mm, "%.3f ± %.3f"}});
 }
 
 }  // namespace

@@ -25,13 +25,18 @@ struct SummaryRow {
   double settlement_mm = 0.0;    // sleeper settlement at peak load
   double resilient_mm = 0.0;     // settlement at peak less the permanent settlement
   double sleeper_bodies = 0.0;   // particles touching the sleeper at peak load (a count)
+  long long cycles = 0;          // load cycles recorded (0: not loaded, or an older archive)
+  double permanent_mm = 0.0;     // sleeper settlement after the last cycle
+  double log_slope_mm = 0.0;     // its growth per decade of cycles (least squares on log10 N)
   double wall_seconds = 0.0;
 };
 
 // Every run in the archive, in study order.
 std::vector<SummaryRow> read_summary(const std::string& archive);
 // The table, then, for every sample with two or more loaded runs, the mean and 95 %
-// confidence interval over its replicates, then the failed runs with their messages.
+// confidence interval over its replicates (and, for runs of several load cycles, of
+// the settlement after N cycles and its slope against log N), then the failed runs
+// with their messages.
 void print_summary(std::ostream& out, const std::vector<SummaryRow>& rows);
 
 }  // namespace ballast

@@ -14,6 +14,7 @@
 #include "cases/packing_bodies.hpp"
 #include "engine/errors.hpp"
 #include "study/archive/run_archive.hpp"
+#include "study/build_info.hpp"
 #include "study/cli/output_paths.hpp"
 #include "study/cli/run_summary.hpp"
 #include "study/cli/run_vtk.hpp"
@@ -30,6 +31,9 @@ struct RunOptions {
   std::vector<std::string> overrides;  // "/numerics/rotation=full"
   int threads = 0;
   bool json = false;
+  bool resume = false;               // continue from OUTPUT.checkpoint
+  long checkpoint_cycles = 0;        // a checkpoint after every K-th load cycle; 0: not by cycles
+  double checkpoint_minutes = 10.0;  // and at least this often (wall minutes); 0: not by time
 };
 
 // "/a/b=value": value is parsed as JSON, or taken as a string if it is not JSON.
@@ -69,6 +73,21 @@ void run(const RunOptions& o) {
   }
   // Refused now rather than after a run of many minutes.
   if (!o.output.empty()) check_writable_file("-o", o.output);
+  CheckpointPlan plan;
+  if (o.resume && o.output.empty())
+    throw SetupError("--resume needs -o: the checkpoint it continues is OUTPUT.checkpoint");
+  if (!o.output.empty()) {
+    plan.path = o.output + ".checkpoint";
+    plan.every_cycles = o.checkpoint_cycles;
+    plan.every_minutes = o.checkpoint_minutes;
+    plan.resume = o.resume;
+    plan.build_id = kGitRevision;
+    plan.scene_text = j.dump();
+    if (!o.resume && std::filesystem::exists(plan.path))
+      throw SetupError(plan.path +
+                       " exists: the checkpoint of a run that did not finish. "
+                       "--resume continues it; delete it to start the run again");
+  }
   if (!o.vtk_dir.empty()) check_writable_directory("--vtk", o.vtk_dir);
   if (!o.export_packing.empty()) check_writable_file("--export-packing", o.export_packing);
   std::ostream* log = o.json ? &std::cerr : &std::cout;
@@ -82,8 +101,11 @@ void run(const RunOptions& o) {
                        "ballast run " + o.scene + " (scene '" + scene.name + "'), after " + after);
     *log << "packing written to " << o.export_packing << "\n";
   };
-  const BoxTestResult r = run_box_test(scene, log, export_bed);
-  if (!o.output.empty()) write_run_file(o.output, j.dump(2), r);
+  const BoxTestResult r = run_box_test(scene, log, export_bed, plan);
+  if (!o.output.empty()) {
+    write_run_file(o.output, j.dump(2), r);
+    std::filesystem::remove(plan.path);  // the run is safe in its file now
+  }
   if (!o.vtk_dir.empty()) write_run_vtk(o.vtk_dir, r);
   if (o.json)
     std::cout << run_summary_json(r).dump(2) << "\n";
@@ -106,6 +128,18 @@ void register_run_command(CLI::App& app) {
   cmd->add_option("--threads", o->threads, "OpenMP threads (0: OMP_NUM_THREADS or all cores)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--json", o->json, "print the summary as JSON (progress goes to stderr)");
+  cmd->add_flag("--resume", o->resume,
+                "continue a killed run from OUTPUT.checkpoint (bit for bit), or start it "
+                "when there is none");
+  cmd->add_option("--checkpoint-cycles", o->checkpoint_cycles,
+                  "with -o: write OUTPUT.checkpoint after every K-th load cycle (0: not by "
+                  "cycles)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--checkpoint-minutes", o->checkpoint_minutes,
+                  "with -o: write OUTPUT.checkpoint at least this often during the load "
+                  "cycles, wall-clock minutes (0: not by time)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->callback([o] { run(*o); });
 }
 

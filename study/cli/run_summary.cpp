@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <ostream>
 
+#include "cases/cycle_recorder.hpp"
+
 namespace ballast {
 
 namespace {
@@ -60,6 +62,8 @@ nlohmann::json run_summary_json(const BoxTestResult& r) {
     j["resilient_settlement_m"] = r.resilient_settlement;
     j["max_force_error_N"] = r.max_force_error;
     j["rms_force_error_N"] = r.rms_force_error;
+    j["cycles"] = r.cycles.count();
+    j["settlement_log_slope_m"] = settlement_log_slope(r.cycles.settlement_trough);
   }
   return j;
 }
@@ -97,6 +101,15 @@ void print_run_summary(std::ostream& out, const BoxTestResult& r) {
                 r.max_displacement_peak * 1e3, r.max_displacement_after * 1e3,
                 r.settlement_peak * 1e3, r.permanent_settlement * 1e3, r.resilient_settlement * 1e3,
                 r.max_force_error, r.rms_force_error);
+  out << line;
+  const CycleRecords& c = r.cycles;
+  if (c.count() < 2) return;
+  // The figures above span all cycles from the first peak on; the per-cycle view:
+  std::snprintf(line, sizeof line,
+                "%zu cycles: permanent settlement %.3f mm after cycle 1, %.3f mm after the last "
+                "(%.3f mm per decade of cycles, least squares on log10 N); last rebound %.3f mm\n",
+                c.count(), c.settlement_trough.front() * 1e3, c.settlement_trough.back() * 1e3,
+                settlement_log_slope(c.settlement_trough) * 1e3, r.resilient_settlement * 1e3);
   out << line;
 }
 

@@ -88,7 +88,8 @@ double estimated_cost(const PreparedRun& r) {
 
 // One run from start to end. Whatever it throws is its failure, recorded with the
 // message; the study goes on.
-RunRecord execute(const PreparedRun& run, int threads, ProgressBoard& board) {
+RunRecord execute(const PreparedRun& run, int threads, ProgressBoard& board,
+                  CheckpointPlan checkpoints) {
   RunRecord r;
   r.spec = *run.spec;
   r.threads = threads;
@@ -99,7 +100,9 @@ RunRecord execute(const PreparedRun& run, int threads, ProgressBoard& board) {
   RunLog log([&](const std::string& line) { board.log_line(*run.spec, line); });
   board.started(*run.spec, threads);
   try {
-    r.result = run_box_test(run.scene, &log.stream());
+    checkpoints.scene_text = run.scene_json;
+    checkpoints.log_text = [&log] { return log.text(); };
+    r.result = run_box_test(run.scene, &log.stream(), {}, checkpoints);
     r.ok = true;
   } catch (const SimulationError& e) {
     r.message = std::string("blew up: ") + e.what();
@@ -112,6 +115,20 @@ RunRecord execute(const PreparedRun& run, int threads, ProgressBoard& board) {
   r.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   r.log = log.text();
   return r;
+}
+
+// Where run `run` keeps its checkpoint: beside the parts, which a finished study removes.
+CheckpointPlan checkpoint_plan(const StudyOptions& o, const StudyStore& store,
+                               const PreparedRun& run) {
+  CheckpointPlan plan;
+  char name[32];
+  std::snprintf(name, sizeof name, "/%06zu.checkpoint", run.spec->index);
+  plan.path = store.parts_dir() + name;
+  plan.every_cycles = o.checkpoint_cycles;
+  plan.every_minutes = o.checkpoint_minutes;
+  plan.resume = o.resume;
+  plan.build_id = kGitRevision;
+  return plan;
 }
 
 void print_dry_run(const PreparedStudy& p, const std::vector<const PreparedRun*>& todo,
@@ -278,8 +295,10 @@ int run_study(const StudyOptions& o) {
       if (stop.load() || StopSignals::count() > 0) continue;
       omp_set_num_threads(plan.threads);  // this run's engine: its own inner team
       try {
-        const RunRecord r = execute(*todo[static_cast<std::size_t>(k)], plan.threads, board);
+        const PreparedRun& run = *todo[static_cast<std::size_t>(k)];
+        const RunRecord r = execute(run, plan.threads, board, checkpoint_plan(o, *store, run));
         store->record(r);
+        std::filesystem::remove(checkpoint_plan(o, *store, run).path);  // the part holds it
         board.finished(r);
       } catch (...) {
         std::lock_guard<std::mutex> lock(failure_mutex);

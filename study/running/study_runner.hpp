@@ -20,7 +20,11 @@ struct StudyOptions {
   int threads = 0;  // 0: likewise
   std::string shard = "1/1";
   bool resume = false;
-  bool retry_failed = false;      // with --resume: run the failed runs again
+  bool retry_failed = false;  // with --resume: run the failed runs again
+  // Each run's load cycles write ARCHIVE.parts/NNNNNN.checkpoint after every K-th cycle
+  // and at least every M wall minutes; --resume continues a run in flight from it.
+  long checkpoint_cycles = 0;
+  double checkpoint_minutes = 10.0;
   bool dry_run = false;           // check everything, list the runs, write nothing
   std::string progress = "auto";  // "auto" (live on a terminal), "live" or "plain"
 };

@@ -103,6 +103,10 @@ class Faults(unittest.TestCase):
             out = os.path.join(d.where, "r.h5")
             r = ballast("run", self.scene, "-o", out, "--threads", "1")
             self.assert_clean_failure(r, 1, f"cannot write {out}: No space left on device")
+            # Its checkpoint at the start of loading did not fit either: said, and the
+            # run went on to the end (the output is what it could not write).
+            self.assertIn(f"warning: cannot write checkpoint {out}.checkpoint.tmp: No space "
+                          "left on device; the run goes on without it", r.stdout)
             self.assertEqual(os.listdir(d.where), [])
 
     def test_a_read_only_output_is_refused_before_anything_runs(self):

@@ -1,0 +1,156 @@
+#!/usr/bin/python3
+"""Checkpoints of the load cycles (cases/box_test_checkpoint.hpp): a run killed with
+SIGKILL at several moments and resumed each time ends with the same archive, bit for
+bit, as a run never interrupted; so does a study whose run in flight is killed; and a
+checkpoint that is damaged, truncated, of another scene, or left over from a killed
+run is refused with a message that says so.
+
+The scene is tests/data/study/tiny.json (40 spheres) loaded for 20 cycles at 100 Hz:
+a few seconds a run. Run by ctest with the path of the ballast binary as the only
+argument:
+    /usr/bin/python3 tests/cli/test_checkpoint.py build/study/ballast
+"""
+import json
+import os
+import re
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+import h5py
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import binary  # noqa: E402
+from archive_compare import differences, run_differences  # noqa: E402
+from binary import ballast, succeed  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TINY = os.path.join(HERE, "..", "data", "study", "tiny.json")
+CYCLES = ["--set", "/sleeper/cycles=20", "--threads", "1"]
+RESUMED = re.compile(r"resumed from checkpoint .*: step (\d+), (\d+) of 20 cycles done")
+
+
+def run_differences_single(a_path, b_path):
+    with h5py.File(a_path, "r") as a, h5py.File(b_path, "r") as b:
+        return differences(a["run"], b["run"], "/run")
+
+
+def kill_after(cmd, checkpoint, delay):
+    """Starts `cmd`, waits for `checkpoint` to be (re)written, waits `delay` s more, and
+    kills it with SIGKILL. Returns whether it was still running to be killed."""
+    before = os.stat(checkpoint).st_mtime_ns if os.path.exists(checkpoint) else None
+    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 300
+    while time.monotonic() < deadline and p.poll() is None:
+        if os.path.exists(checkpoint) and os.stat(checkpoint).st_mtime_ns != before:
+            break
+        time.sleep(0.02)
+    time.sleep(delay)
+    running = p.poll() is None
+    if running:
+        p.send_signal(signal.SIGKILL)
+    p.wait()
+    return running
+
+
+class Checkpoints(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.reference = os.path.join(cls.tmp.name, "reference.h5")
+        succeed("run", TINY, *CYCLES, "--checkpoint-minutes", "0", "-o", cls.reference)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def path(self, name):
+        return os.path.join(self.tmp.name, name)
+
+    def test_killed_three_times_then_resumed_gives_the_same_archive(self):
+        out = self.path("killed.h5")
+        checkpoint = out + ".checkpoint"
+        cmd = [binary.PATH, "run", TINY, *CYCLES, "--checkpoint-cycles", "1", "-o", out]
+        # A kill right after a checkpoint lands, one a little later, one later still
+        # (inside a cycle, while the next checkpoint may be being written).
+        kills = sum(kill_after(cmd + (["--resume"] if k else []), checkpoint, delay)
+                    for k, delay in enumerate((0.0, 0.15, 0.4)))
+        self.assertGreaterEqual(kills, 2, "the runs ended before they could be killed")
+        self.assertTrue(os.path.exists(checkpoint))
+        self.assertFalse(os.path.exists(out))
+        r = succeed("run", TINY, *CYCLES, "--checkpoint-cycles", "1", "-o", out, "--resume")
+        done = [int(m.group(2)) for m in RESUMED.finditer(r.stdout)]
+        self.assertEqual(len(done), 1, r.stdout[-2000:])
+        self.assertGreater(done[0], 0, "the last resume started from the start of loading")
+        self.assertEqual(run_differences_single(out, self.reference), [])
+        self.assertFalse(os.path.exists(checkpoint), "a finished run removes its checkpoint")
+
+    def test_resumed_on_two_threads_gives_the_same_archive(self):
+        out = self.path("two.h5")
+        cmd = [binary.PATH, "run", TINY, *CYCLES, "--checkpoint-cycles", "5", "-o", out]
+        self.assertTrue(kill_after(cmd, out + ".checkpoint", 0.3))
+        succeed("run", TINY, "--set", "/sleeper/cycles=20", "--threads", "2",
+                "--checkpoint-cycles", "5", "-o", out, "--resume")
+        self.assertEqual(run_differences_single(out, self.reference), [])
+
+    def test_a_left_over_checkpoint_is_kept_and_named(self):
+        out = self.path("left.h5")
+        cmd = [binary.PATH, "run", TINY, *CYCLES, "--checkpoint-cycles", "2", "-o", out]
+        self.assertTrue(kill_after(cmd, out + ".checkpoint", 0.0))
+        before = open(out + ".checkpoint", "rb").read()
+        r = ballast("run", TINY, *CYCLES, "-o", out)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn(f"{out}.checkpoint exists", r.stderr)
+        self.assertIn("--resume continues it", r.stderr)
+        self.assertEqual(open(out + ".checkpoint", "rb").read(), before)
+
+    def refused(self, name, damage, *extra):
+        """A checkpoint of a killed run, damaged by `damage(bytes) -> bytes`, then
+        --resume: exit 2 and the message."""
+        out = self.path(name)
+        cmd = [binary.PATH, "run", TINY, *CYCLES, "--checkpoint-cycles", "2", "-o", out]
+        self.assertTrue(kill_after(cmd, out + ".checkpoint", 0.0))
+        with open(out + ".checkpoint", "rb") as f:
+            data = f.read()
+        with open(out + ".checkpoint", "wb") as f:
+            f.write(damage(data))
+        r = ballast("run", TINY, *CYCLES, *extra, "-o", out, "--resume")
+        self.assertEqual(r.returncode, 2, r.stdout[-1000:] + r.stderr)
+        self.assertFalse(os.path.exists(out))
+        return r.stderr
+
+    def test_a_flipped_byte_is_refused(self):
+        def flip(data):
+            k = len(data) * 2 // 3
+            return data[:k] + bytes([data[k] ^ 0x10]) + data[k + 1:]
+        self.assertIn("is damaged (its hash does not match)", self.refused("flip.h5", flip))
+
+    def test_a_truncated_checkpoint_is_refused(self):
+        self.assertIn("is truncated", self.refused("truncated.h5", lambda d: d[:len(d) // 2]))
+
+    def test_another_scenes_checkpoint_is_refused(self):
+        message = self.refused("other.h5", lambda d: d, "--set", "/sleeper/peak_load=2500")
+        self.assertIn("was written for another scene", message)
+
+    def test_a_study_resumes_its_run_in_flight(self):
+        study = self.path("study.json")
+        with open(study, "w") as f:
+            json.dump({"name": "cycles", "scene": os.path.abspath(TINY), "seed": 5,
+                       "matrix": {"samples": [{"name": "spheres", "shape": "spheres"}],
+                                  "axes": {"cycles": [20]}, "replicates": 2}}, f)
+        whole, cut = self.path("whole.h5"), self.path("cut.h5")
+        common = ["--jobs", "1", "--threads", "1", "--progress", "plain"]
+        succeed("study", study, "-o", whole, *common)
+        cmd = [binary.PATH, "study", study, "-o", cut, *common, "--checkpoint-cycles", "3"]
+        self.assertTrue(kill_after(cmd, cut + ".parts/000000.checkpoint", 0.2))
+        r = succeed("study", study, "-o", cut, *common, "--checkpoint-cycles", "3", "--resume")
+        self.assertIn("resumed from checkpoint", r.stdout)
+        self.assertEqual(run_differences(cut, whole), [])
+        self.assertFalse(os.path.exists(cut + ".parts"))
+
+
+if __name__ == "__main__":
+    binary.main()
