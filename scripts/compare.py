@@ -16,8 +16,10 @@ out that arithmetic where the archive holds the near-contact counts.
 
 Then the sample-level tables of scripts/compare_samples.py: replicates' means with 95 %
 intervals (when a sample has two runs or more), the spheres / clumps ratios, and the
-directions in which the top layer moves (archives with zones/). Fields that newer
-archives add (force percentiles, the sleeper's contacts, zones, near contacts) are
+directions in which the top layer moves (archives with zones/). Runs of several load
+cycles add the settlement after the first cycle and its growth per decade of cycles
+(least squares on log10 N; the permanent settlement row is after the last cycle).
+Fields that newer archives add (force percentiles, the sleeper's contacts, zones, near contacts) are
 rows where present and left out where not. `--json` prints the same numbers,
 unrounded, for scripts (keys: docs/FIGURES.md).
 """
@@ -133,7 +135,23 @@ def quantities(run, paper=None):
               a("resilient_settlement") * MM, None, "{:.3g}"),
              ("rms_force_error_N", "sleeper force error, rms (N)", a("rms_force_error"), None,
               "{:,.0f}")]
-    return rows + zone_rows(run)
+    return rows + cycle_rows(run) + zone_rows(run)
+
+
+def cycle_rows(run):
+    """Runs of two load cycles or more (cycles/ in newer archives): how the permanent
+    settlement grows with the number of cycles N. The paper loads once: no paper
+    numbers."""
+    count = run.optional("count", "cycles")
+    if count is None or int(count) < 2:
+        return []
+    first = float(run.data("cycles/settlement_trough")[0])
+    return [("cycles", "load cycles", int(count), None, "{:,.0f}"),
+            ("permanent_settlement_first_mm", "permanent settlement after the first cycle (mm)",
+             first * MM, None, "{:.3g}"),
+            ("settlement_log_slope_mm", "permanent settlement per decade of cycles (mm, least "
+             "squares on log10 N)", float(run.attribute("settlement_log_slope", "cycles")) * MM,
+             None, "{:.3g}")]
 
 
 def cell(value, paper, fmt):

@@ -19,6 +19,8 @@ run (`ballast run -o`). Writes into DIR, one line per file on stdout:
   fig_zones.png                    top layer beneath and beside the sleeper: mean vertical
                                    displacement per sample, with the paper's directions
                                    (archives with zones/; cf. Figs 15-17)
+  fig_cycles.png                   permanent and resilient settlement against the number
+                                   of load cycles, per sample (runs of two cycles or more)
 
 What each shows and what to look for: docs/FIGURES.md. A figure that the archive
 cannot give (no clump templates in a single-run file, a run stopped before loading,
@@ -40,6 +42,7 @@ from ballast_archive import (ArchiveError, add_run_arguments, chosen_runs,  # no
 from clump_render import draw_clump, parameter_caption, typical_clump  # noqa: E402
 from fig_common import LETTERS, MM, save  # noqa: E402
 from fig_contacts import contacts_before, contacts_per_run  # noqa: E402
+from fig_cycles import cycles_figure  # noqa: E402
 from fig_displacements import displacements  # noqa: E402
 from fig_rotations import rotations_per_run  # noqa: E402
 from fig_zones import zone_figure  # noqa: E402
@@ -117,6 +120,7 @@ def render(runs, out_dir):
         attempt("Figs 15-17", displacements, loaded, out_dir, note)
         attempt("Fig. 18", load_deformation, loaded, out_dir)
         attempt("fig_zones", zone_figure, loaded, out_dir, note)
+        attempt("fig_cycles", cycles_figure, loaded, out_dir)
     return written, failed
 
 

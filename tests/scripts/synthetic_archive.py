@@ -28,11 +28,12 @@ GAPS = (0.0, 1e-6, 1e-4, 1e-3)  # near_gap, m
 
 
 def run(run_id, sample, shape, replicate=1, bodies=PARTICLES, balls=None, zones=None,
-        seating="equilibrium", **attrs):
+        seating="equilibrium", cycles=None, **attrs):
     """A run to write. zones: {"beneath": (dz_peak, dz_end), "beside": (...)} in m;
-    seating: how its preload stage ended."""
+    seating: how its preload stage ended; cycles: (trough, resilient), each settlement's
+    array over the load cycles in m, for a cycles/ group (runs of several cycles)."""
     return {"id": run_id, "sample": sample, "shape": shape, "replicate": replicate,
-            "seating": seating,
+            "seating": seating, "cycles": cycles,
             "bodies": bodies, "balls": balls or (bodies if shape == "spheres" else 10 * bodies),
             "zones": zones or {"beneath": (-2e-4, -1e-4), "beside": (1e-4, 2e-4)},
             "attrs": attrs}
@@ -74,6 +75,23 @@ def _zones(group, spec, surface):
         g.attrs.update({"count": 12, "dz_peak": peak, "dz_end": end,
                         "rotation_loading_deg": 0.5, "rotation_unloading_deg": 0.2,
                         "rotation_cycle_deg": 0.6})
+
+
+def _cycles(group, spec):
+    """cycles/ as the box test writes it (docs/ARCHIVE.md), with the slope the C++
+    fit gives: least squares of the trough on log10 N."""
+    trough, resilient = (np.asarray(x, dtype=float) for x in spec["cycles"])
+    n = np.arange(1, len(trough) + 1)
+    c = group.create_group("cycles")
+    slope = np.polyfit(np.log10(n), trough, 1)[0] if len(n) >= 2 else 0.0
+    c.attrs.update({"count": len(trough), "settlement_log_slope": slope})
+    for name, value, units in (("cycle", n.astype(np.int32), "1"),
+                               ("settlement_trough", trough, "m"),
+                               ("settlement_peak", trough + resilient, "m"),
+                               ("resilient_settlement", resilient, "m")):
+        _dataset(c, name, value, units)
+    group.attrs["permanent_settlement"] = trough[-1]
+    group.attrs["resilient_settlement"] = resilient[-1]
 
 
 def _run_group(parent, name, index, spec, scene, new_fields):
@@ -120,6 +138,8 @@ def _run_group(parent, name, index, spec, scene, new_fields):
         st.attrs.update({"ended_by": ended, "unbalanced": ratio, "steps": 1000})
     if new_fields:
         _zones(g, spec, 0.16)
+    if spec["cycles"] is not None:
+        _cycles(g, spec)
 
 
 def write_study(path, runs, scene=SMOKE, new_fields=True, failed=()):
