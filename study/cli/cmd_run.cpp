@@ -15,6 +15,7 @@
 #include "engine/errors.hpp"
 #include "study/archive/run_archive.hpp"
 #include "study/build_info.hpp"
+#include "study/cli/checkpoint_options.hpp"
 #include "study/cli/output_paths.hpp"
 #include "study/cli/run_summary.hpp"
 #include "study/cli/run_vtk.hpp"
@@ -104,7 +105,8 @@ void run(const RunOptions& o) {
   const BoxTestResult r = run_box_test(scene, log, export_bed, plan);
   if (!o.output.empty()) {
     write_run_file(o.output, j.dump(2), r);
-    std::filesystem::remove(plan.path);  // the run is safe in its file now
+    std::error_code ignored;  // a checkpoint left behind costs disk, not results
+    std::filesystem::remove(plan.path, ignored);  // the run is safe in its file now
   }
   if (!o.vtk_dir.empty()) write_run_vtk(o.vtk_dir, r);
   if (o.json)
@@ -131,15 +133,8 @@ void register_run_command(CLI::App& app) {
   cmd->add_flag("--resume", o->resume,
                 "continue a killed run from OUTPUT.checkpoint (bit for bit), or start it "
                 "when there is none");
-  cmd->add_option("--checkpoint-cycles", o->checkpoint_cycles,
-                  "with -o: write OUTPUT.checkpoint after every K-th load cycle (0: not by "
-                  "cycles)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--checkpoint-minutes", o->checkpoint_minutes,
-                  "with -o: write OUTPUT.checkpoint at least this often during the load "
-                  "cycles, wall-clock minutes (0: not by time)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  add_checkpoint_options(cmd, o->checkpoint_cycles, o->checkpoint_minutes,
+                         "OUTPUT.checkpoint (with -o)");
   cmd->callback([o] { run(*o); });
 }
 

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "engine/errors.hpp"
+#include "study/cli/checkpoint_options.hpp"
 #include "study/cli/command_exit.hpp"
 #include "study/cli/output_paths.hpp"
 #include "study/running/study_runner.hpp"
@@ -27,15 +28,8 @@ void register_study_command(CLI::App& app) {
                 "complete the study in an existing archive (or its parts) without redoing "
                 "finished runs");
   cmd->add_flag("--retry-failed", o->retry_failed, "with --resume: run the failed runs again");
-  cmd->add_option("--checkpoint-cycles", o->checkpoint_cycles,
-                  "each run writes a checkpoint after every K-th load cycle (0: not by cycles); "
-                  "--resume continues runs in flight from theirs")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--checkpoint-minutes", o->checkpoint_minutes,
-                  "and at least this often during its load cycles, wall-clock minutes (0: not "
-                  "by time)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  add_checkpoint_options(cmd, o->checkpoint_cycles, o->checkpoint_minutes,
+                         "each run's ARCHIVE.parts/NNNNNN.checkpoint (which --resume continues)");
   auto* dry = cmd->add_flag("--dry-run", o->dry_run,
                             "check the study and every run's scene, list the runs, write nothing");
   cmd->add_option("--progress", o->progress, "auto: live on a terminal, plain lines otherwise")
