@@ -159,11 +159,12 @@ CycleLoop seat_sleeper(const BoxTestScene& s, Simulation& sim, BoxTestResult& ou
 }
 
 // Stage 4's cycles, from wherever `loop` stands (the start of loading, or a
-// checkpoint), writing checkpoints as `plan` asks; then what the cycles measured.
-// run_start: when this process started the run.
+// checkpoint: `resumed`), writing checkpoints as `plan` asks; then what the cycles
+// measured. run_start: when this process started the run.
 void run_cycles(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, CycleLoop& loop,
                 std::ostream* log, const CheckpointPlan& plan,
-                const std::vector<ClumpTemplate>& templates, Clock::time_point run_start) {
+                const std::vector<ClumpTemplate>& templates, Clock::time_point run_start,
+                bool resumed) {
   const Clock::time_point start = Clock::now();
   const double loop_before = loop.seconds, run_before = loop.run_seconds;
   Clock::time_point last_checkpoint = start;
@@ -182,7 +183,7 @@ void run_cycles(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, Cycl
   };
   const bool checkpoints = !plan.path.empty();
   // A run killed during its first cycle resumes here, not from a new preparation.
-  if (checkpoints && sim.step_count() == loop.step0) checkpoint();
+  if (checkpoints && !resumed) checkpoint();
   const Index wall = loop.wall;
   while (sim.time() < loop.t_end) {
     sim.step();
@@ -245,7 +246,7 @@ void run_cycles(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, Cycl
 
 void load_box_test(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, std::ostream* log) {
   CycleLoop loop = seat_sleeper(s, sim, out, log);
-  run_cycles(s, sim, out, loop, log, CheckpointPlan{}, {}, Clock::now());
+  run_cycles(s, sim, out, loop, log, CheckpointPlan{}, {}, Clock::now(), false);
 }
 
 BoxTestResult run_box_test(const BoxTestScene& s, std::ostream* log,
@@ -275,12 +276,12 @@ BoxTestResult run_box_test(const BoxTestScene& s, std::ostream* log,
     if (log)
       *log << c.log << "resumed from checkpoint " << plan.path << ": step " << sim.step_count()
            << ", " << c.loop.cycles.cycles_done() << " of " << s.cycles << " cycles done\n";
-    run_cycles(s, sim, out, c.loop, log, plan, bed.templates, start);
+    run_cycles(s, sim, out, c.loop, log, plan, bed.templates, start, true);
   } else if (s.stop_after.empty()) {
     out.scene_name = s.name;
     out.stages = bed.stages;
     CycleLoop loop = seat_sleeper(s, sim, out, log);
-    run_cycles(s, sim, out, loop, log, plan, bed.templates, start);
+    run_cycles(s, sim, out, loop, log, plan, bed.templates, start, false);
   } else {
     out.scene_name = s.name;
     out.stages = bed.stages;
