@@ -66,8 +66,11 @@ BedOptions sphere_bed() {
 
 }  // namespace
 
+// From 0.01 s to 0.02 s the bed crosses early builds of the rebuild policy, so a
+// checkpoint without the policy's interval state is caught (tests/mutations.tsv); a
+// shorter window (0.008 to 0.014 s) let that mutation through.
 TEST(Checkpoint, ClumpBedResumesBitForBit) {
-  expect_resume_bit_for_bit(settling_clump_bed_options(), 0.008, 0.014, 1);
+  expect_resume_bit_for_bit(settling_clump_bed_options(), 0.01, 0.02, 1);
 }
 
 TEST(Checkpoint, ClumpBedResumesBitForBitOnTwoThreads) {
