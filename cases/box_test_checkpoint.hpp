@@ -36,8 +36,9 @@ struct CheckpointPlan {
 
 // What the load loop carries from step to step, besides the simulation.
 struct CycleLoop {
-  Index wall = 0, servo = 0;                             // the sleeper and its servo
-  double x0 = 0.0, x1 = 0.0;                             // m, the sleeper's extent in x
+  Index wall = 0, servo = 0;  // the sleeper and its servo
+  double x0 = 0.0, x1 = 0.0;  // m, the sleeper's extent in x
+  double top = 0.0;           // m, the bed's top under the sleeper before it was placed
   double t0 = 0.0, t_peak = 0.0, t_end = 0.0, z0 = 0.0;  // s, s, s, m
   long step0 = 0;                                        // the step count at the start of loading
   EnergyBudget energy0;                                  // at the start of loading
@@ -51,7 +52,7 @@ struct CycleLoop {
 
   template <class Io>
   void state_fields(Io& io) {
-    io(wall, servo, x0, x1, t0, t_peak, t_end, z0, step0, energy0, err2, samples, peak_done,
+    io(wall, servo, x0, x1, top, t0, t_peak, t_end, z0, step0, energy0, err2, samples, peak_done,
        rotation_peak, seconds, run_seconds, cycles);
   }
 };

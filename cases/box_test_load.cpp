@@ -103,7 +103,7 @@ CycleLoop seat_sleeper(const BoxTestScene& s, Simulation& sim, BoxTestResult& ou
   CycleLoop loop;
   loop.x0 = 0.5 * (s.length - s.sleeper_length);
   loop.x1 = loop.x0 + s.sleeper_length;
-  const double top = bed_top(sim, loop.x0, loop.x1);
+  const double top = loop.top = bed_top(sim, loop.x0, loop.x1);
   // The sleeper: a rigid block over the full width, 1 mm above the bed.
   Wall sleeper;
   sleeper.name = "sleeper";
@@ -147,7 +147,6 @@ CycleLoop seat_sleeper(const BoxTestScene& s, Simulation& sim, BoxTestResult& ou
   out.before = snapshot_contacts(sim, wall);
   out.near_before = count_near_pairs(sim, near_pair_gaps());
   out.position_start = sim.bodies().position;
-  out.zones.surface = top;
   loop.z0 = sim.walls()[wall].displacement.z();
   const double period = 1.0 / s.frequency;
   loop.t_peak = loop.t0 + 0.5 * period;
@@ -234,7 +233,7 @@ void run_cycles(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, Cycl
   out.permanent_settlement = loop.z0 - sim.walls()[wall].displacement.z();
   // The last cycle's rebound (the first's for one cycle).
   out.resilient_settlement = out.cycles.settlement_peak.back() - out.permanent_settlement;
-  out.zones = measure_zones(out, loop.x0, loop.x1, out.zones.surface, s.zone_depth);
+  out.zones = measure_zones(out, loop.x0, loop.x1, loop.top, s.zone_depth);
   out.loaded = true;
   if (log)
     *log << "  cycle: settlement " << out.settlement_peak * 1e3 << " mm at peak, permanent "

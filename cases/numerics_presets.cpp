@@ -26,10 +26,10 @@ constexpr PresetField kBalanced[] = {
     {"/particles/mass_mode", "\"sum\""},
 };
 // "fast": balanced, with the masses scaled 10 times and gravity weakened as much (PFC
-// users' mass scaling: weights stay, the critical step grows by sqrt(10)). A first
-// fast preset scaled the density alone: the bed weighed ten times as much and its mean
-// contact force doubled. Mass scaling acts as a faster load, and at full scale the
-// clumps then turn four times less (docs/TRADEOFFS.md): fit for porosity and rebound.
+// users' mass scaling: weights stay, the critical step grows by sqrt(10)). Scaling the
+// density alone would make the bed weigh ten times as much (its mean contact force
+// doubles in docs/TRADEOFFS.md's table). Mass scaling acts as a faster load, and at
+// full scale the clumps then turn four times less: fit for porosity and rebound.
 constexpr PresetField kFast[] = {
     {"/numerics/dt_safety", "1.0"},
     {"/particles/mass_mode", "\"sum\""},

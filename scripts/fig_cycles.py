@@ -60,7 +60,7 @@ def draw(ax, group, colour, values, fit):
 
 def cycles_figure(runs, out_dir):
     """fig_cycles.png, or nothing when no run holds two cycles or more."""
-    groups = [g for g in group_runs([r for r in runs if cycle_count(r) >= 2])]
+    groups = group_runs([r for r in runs if cycle_count(r) >= 2])
     if not groups:
         return []
     fig, (ax_perm, ax_res) = plt.subplots(1, 2, figsize=(11.2, 4.6), layout="constrained")

@@ -82,13 +82,14 @@ void number_attribute(hid_t target, const char* name, T value) {
 }
 
 // A dataset of doubles (or ints) with shape `dims`, row-major data, and its units.
+// `creation`: dataset creation properties (chunking, filters); default none.
 template <class T>
 void dataset(hid_t group, const char* name, const std::vector<hsize_t>& dims,
-             const std::vector<T>& data, const std::string& units) {
+             const std::vector<T>& data, const std::string& units, hid_t creation = H5P_DEFAULT) {
   const hid_t type = std::is_floating_point_v<T> ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT;
   Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose,
                std::string("create space for ") + name);
-  Handle set(H5Dcreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+  Handle set(H5Dcreate2(group, name, type, space, H5P_DEFAULT, creation, H5P_DEFAULT), H5Dclose,
              std::string("create dataset ") + name);
   if (!data.empty()) {
     check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
@@ -105,20 +106,14 @@ template <class T>
 void compressed_dataset(hid_t group, const char* name, const std::vector<T>& data,
                         const std::string& units) {
   if (data.empty()) return dataset(group, name, {0}, data, units);
-  const hid_t type = std::is_floating_point_v<T> ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT;
-  const hsize_t n = data.size(), chunk = std::min<hsize_t>(n, 8192);
-  Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose, std::string("create space for ") + name);
+  const hsize_t chunk = std::min<hsize_t>(data.size(), 8192);
   Handle plist(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "create dataset properties");
   check(H5Pset_chunk(plist, 1, &chunk), std::string("chunk dataset ") + name);
   // The shuffle filter groups the bytes of like significance: smooth series of
   // doubles compress about twice as well with it.
   check(H5Pset_shuffle(plist), std::string("shuffle dataset ") + name);
   check(H5Pset_deflate(plist, 4), std::string("compress dataset ") + name);
-  Handle set(H5Dcreate2(group, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT), H5Dclose,
-             std::string("create dataset ") + name);
-  check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
-        std::string("write dataset ") + name);
-  string_attribute(set, "units", units);
+  dataset(group, name, {static_cast<hsize_t>(data.size())}, data, units, plist);
 }
 
 // A scalar string dataset (texts too long or too free-form for an attribute: logs).
