@@ -56,7 +56,7 @@ test-sanitize: deps
 	@cd $(BUILD)-sanitize && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	  UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS) -LE slow
 
-# scripts/slurm_study.sh on a real one-node Slurm (docs/STUDY.md, "On a cluster"):
+# scripts/slurm_study.sh on a real one-node Slurm (docs/CLUSTER.md):
 # scripts/slurm_local_cluster.sh installs Debian's Slurm and munge if missing and starts
 # them; tests/slurm/test_slurm_cluster.py submits a small study as 2 shards and a merge
 # job, requeues one shard and cancels the other in the middle of a run, submits again,

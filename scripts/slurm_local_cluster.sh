@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A real one-node Slurm cluster on this machine, for `make test-slurm`
-# (tests/slurm/test_slurm_cluster.py; docs/STUDY.md, "On a cluster").
+# (tests/slurm/test_slurm_cluster.py; docs/CLUSTER.md).
 #
 #   bash scripts/slurm_local_cluster.sh start   # install if missing, configure, start, wait
 #   bash scripts/slurm_local_cluster.sh stop    # stop the daemons, remove config and state

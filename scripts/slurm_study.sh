@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs a study on a Slurm cluster: a job array with one shard per task, then a merge
-# job that waits for all of them (docs/STUDY.md, "On a cluster").
+# job that waits for all of them (docs/CLUSTER.md).
 #
 #   scripts/slurm_study.sh STUDY.json OUT_DIR SHARDS [sbatch options...]
 #

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""scripts/slurm_study.sh against a real Slurm: `make test-slurm` (docs/STUDY.md, "On a
-cluster"). Needs the one-node cluster of scripts/slurm_local_cluster.sh (or any Slurm
+"""scripts/slurm_study.sh against a real Slurm: `make test-slurm` (docs/CLUSTER.md).
+Needs the one-node cluster of scripts/slurm_local_cluster.sh (or any Slurm
 whose jobs run on this machine), and is not part of ctest:
 
     bash scripts/slurm_local_cluster.sh start
@@ -18,7 +18,7 @@ Once each shard has finished its first run and is in the middle of its second:
 - shard 2's task is cancelled (`scancel`, as a time limit or a crash would end it):
   the merge job still runs (afterany) and must name the missing run.
 
-Then the same command is submitted again, as docs/STUDY.md says to after a failure:
+Then the same command is submitted again, as docs/CLUSTER.md says to after a failure:
 shard 1 has nothing left to do, shard 2 runs only its missing run, the first merge is
 moved aside, and the merged archive must equal the reference bit for bit apart from
 timings.
