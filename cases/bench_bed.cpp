@@ -28,6 +28,10 @@ Simulation make_bench_bed(const Packing& packing, const BenchBedOptions& o) {
     sim.add_wall(w);
   // The nominal diameter only matters to mass mode "paper"; the paper's 36.25 mm.
   add_packing(sim, packing, {{o.mass_mode, o.density, 0.005}, 0.03625}, mat);
+  if (!o.keep_file_order) {
+    const SpatialOrder order = sim.sort_bodies_spatially();
+    if (o.log) *o.log << describe(order) << "\n";
+  }
   return sim;
 }
 

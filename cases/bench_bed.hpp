@@ -39,6 +39,9 @@ struct BenchBedOptions {
   // SimulationSettings::simd_lanes: 0 measures what the SIMD sphere kernel saves, in
   // one binary, with the same bits.
   int simd_lanes = -1;
+  // Keep the file's numbering even where sorting pays (Simulation::sort_bodies_spatially):
+  // measures what the sort buys.
+  bool keep_file_order = false;
   std::ostream* log = nullptr;  // dt report and warnings
 };
 

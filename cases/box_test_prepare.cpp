@@ -376,10 +376,12 @@ PreparedBed import_sample(const BoxTestScene& s, std::ostream* log) {
                                      /*open_top=*/false))
     sim.add_wall(w);
   add_packing(sim, packing, mass, mat);
+  // A file from another code comes in its order: numbered cell by cell when that pays.
+  const SpatialOrder order = sim.sort_bodies_spatially();
   if (log)
     *log << "stages 1-2: " << packing.bodies() << " " << (packing.clumps ? "clumps" : "spheres")
          << " (" << packing.balls() << " balls, mass mode " << mass_mode_name(s.mass_mode)
-         << ") imported from " << s.packing_file << "\n";
+         << ") imported from " << s.packing_file << "; " << describe(order) << "\n";
   return out;
 }
 

@@ -26,6 +26,7 @@
 #include "engine/rebuild_policy.hpp"
 #include "engine/rigid_rotation.hpp"
 #include "engine/servo.hpp"
+#include "engine/spatial_order.hpp"
 #include "engine/timed_split.hpp"
 #include "engine/timestep.hpp"
 #include "engine/walls.hpp"
@@ -88,6 +89,12 @@ class Simulation {
     return add_clump(x, orientation, t.offsets, t.radii, t.mass, t.principal_inertia, material);
   }
   Index add_wall(const Wall& w);
+  // Renumbers the bodies and their balls cell by cell (engine/spatial_order.hpp)
+  // when that pays, or always with `always`: for beds that come in another code's
+  // order. Before the first step only (no contact history yet). Returns the order
+  // (order[k]: the body's index before, of the new body k) and whether it was applied;
+  // a caller that keeps anything per body renumbers it by the order.
+  SpatialOrder sort_bodies_spatially(bool always = false);
   Index add_servo(const Servo& s);
   // Stops a servo: its walls stand still from now on (motion Fixed, velocity zero)
   // and the servos after it move down one index.

@@ -6,24 +6,12 @@
 #include "engine/contact_list.hpp"
 #include "engine/simulation.hpp"
 #include "engine/state_io.hpp"
+#include "engine/store_fields.hpp"
 
 namespace ballast {
 
 template <>
 struct Bytewise<Wrench> : std::true_type {};
-
-template <class Io>
-void state_fields(Io& io, BallStore& b) {
-  io(b.position, b.radius, b.body, b.material, b.offset, b.friction_dissipated,
-     b.viscous_dissipated);
-}
-
-template <class Io>
-void state_fields(Io& io, BodyStore& b) {
-  io(b.position, b.velocity, b.angular_velocity, b.angular_momentum, b.force, b.torque,
-     b.orientation, b.mass, b.inv_mass, b.inertia, b.inv_inertia, b.first_ball, b.ball_count,
-     b.is_sphere, b.reference_position, b.rotation, b.gravity_work, b.damping_dissipated);
-}
 
 template <class Io>
 void state_fields(Io& io, Wall& w) {
