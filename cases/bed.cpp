@@ -74,6 +74,7 @@ Simulation make_bed(const BedOptions& o) {
   } else {
     for (const Vec3& p : centres) sim.add_sphere(p, r, box_test::kDensity, mat);
   }
+  if (o.engine_sort) sim.sort_bodies_spatially(/*always=*/true);
   return sim;
 }
 

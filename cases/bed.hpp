@@ -30,6 +30,9 @@ struct BedOptions {
   std::uint64_t seed = 1;
   double volume_fraction = 0.3;  // of the loose random cloud the particles start as
   bool spatial_order = true;     // false: bodies numbered at random (to measure locality)
+  // Then renumbered by the engine (Simulation::sort_bodies_spatially, always): a bed
+  // numbered at random and sorted, as a packing file from another code would be.
+  bool engine_sort = false;
   double friction = box_test::kFrictionCompaction;
   double stiffness = box_test::kBallStiffness;  // N/m, balls and side walls (linear law)
   bool rubber_base = true;                      // false: the base is as stiff as the sides

@@ -27,7 +27,7 @@ namespace {
 // then the benchmark conditions.
 Simulation pour_clump_bed() {
   const auto start = std::chrono::steady_clock::now();
-  const Simulation& spheres = settled_dense_bed(true);
+  const Simulation& spheres = settled_dense_bed(BedOrder::kSpatial);
   BedOptions o;
   o.count = static_cast<int>(spheres.bodies().size());
   o.centres = spheres.bodies().position;

@@ -77,7 +77,7 @@ BENCHMARK(ContactLawEval<HertzMindlinLaw>)
 void ContactLawBed(benchmark::State& state) {
   omp_set_num_threads(1);
   BedOptions o;
-  o.centres = settled_dense_bed(true).balls().position;
+  o.centres = settled_dense_bed(BedOrder::kSpatial).balls().position;
   o.friction = 0.5;
   o.rubber_base = false;
   o.sim.contact_law = std::string(contact_law_name(static_cast<int>(state.range(0))));

@@ -6,7 +6,9 @@
 // 700 × 300 mm box, kn = ks = 5.08e9 N/m, mu = 0.5, gravity, PFC local damping —
 // stepped on 1 and 2 threads. The counter ball_steps/s is the figure of merit;
 // compare the two thread counts from one run (the machine is shared and noisy).
-// The random_order:1 variants number the same bed's bodies at random; fast_path:0
+// The random_order:1 variants number the same bed's bodies at random, random_order:2
+// at random and then by the engine's spatial sort (a packing file from another code,
+// Simulation::sort_bodies_spatially); fast_path:0
 // runs the general (clump-capable) path on the same spheres.
 //
 // EnergyDrift: what a larger timestep costs in accuracy. 300 undamped frictional
@@ -27,7 +29,7 @@ namespace {
 void DenseBed(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   omp_set_num_threads(threads);
-  Simulation sim = settled_dense_bed(state.range(1) == 0);
+  Simulation sim = settled_dense_bed(static_cast<BedOrder>(state.range(1)));
   sim.set_sphere_fast_path(state.range(2) == 1);
   const long steps_per_iteration = 200;
   const long builds0 = sim.neighbour_builds();
@@ -43,7 +45,8 @@ void DenseBed(benchmark::State& state) {
   omp_set_num_threads(omp_get_num_procs());
 }
 // Second argument: 0 = bodies in spatial order (as the packings give them), 1 = the
-// same bed with bodies numbered at random, to show what locality is worth. Third:
+// same bed with bodies numbered at random, to show what locality is worth, 2 = numbered
+// at random and sorted by the engine, to show that the sort wins it back. Third:
 // 1 = the sphere-only scene's fast path (the default), 0 = the general path, to
 // show what that is worth (the two end in the same bits: test_determinism).
 BENCHMARK(DenseBed)
@@ -51,6 +54,8 @@ BENCHMARK(DenseBed)
     ->Args({2, 0, 1})
     ->Args({1, 1, 1})
     ->Args({2, 1, 1})
+    ->Args({1, 2, 1})
+    ->Args({2, 2, 1})
     ->Args({1, 0, 0})
     ->Args({2, 0, 0})
     ->ArgNames({"threads", "random_order", "fast_path"})

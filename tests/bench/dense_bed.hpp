@@ -5,10 +5,15 @@
 
 namespace ballast {
 
+// How the bed's bodies are numbered: as the generator gives them, at random, or at
+// random and then by the engine's spatial sort (as a packing file from another code).
+enum class BedOrder { kSpatial = 0, kRandom = 1, kRandomEngineSorted = 2 };
+
 // Pours and settles a bed; benchmarks step copies of it.
-inline Simulation pour_dense_bed(bool spatial_order) {
+inline Simulation pour_dense_bed(BedOrder order) {
   BedOptions o;  // 1,936 spheres of 36.25 mm, kn = ks = 5.08e9 N/m
-  o.spatial_order = spatial_order;
+  o.spatial_order = order == BedOrder::kSpatial;
+  o.engine_sort = order == BedOrder::kRandomEngineSorted;
   o.friction = 0.5;
   o.rubber_base = false;
   // Fast pour: 20 g, no local damping (it slows free fall to 0.3 g), inelastic
@@ -26,11 +31,15 @@ inline Simulation pour_dense_bed(bool spatial_order) {
 }
 
 // Poured once per process and per body order.
-inline const Simulation& settled_dense_bed(bool spatial_order) {
-  static const Simulation spatial = pour_dense_bed(true);
-  if (spatial_order) return spatial;
-  static const Simulation shuffled = pour_dense_bed(false);
-  return shuffled;
+inline const Simulation& settled_dense_bed(BedOrder order) {
+  static const Simulation spatial = pour_dense_bed(BedOrder::kSpatial);
+  if (order == BedOrder::kSpatial) return spatial;
+  if (order == BedOrder::kRandom) {
+    static const Simulation shuffled = pour_dense_bed(BedOrder::kRandom);
+    return shuffled;
+  }
+  static const Simulation sorted = pour_dense_bed(BedOrder::kRandomEngineSorted);
+  return sorted;
 }
 
 }  // namespace ballast
