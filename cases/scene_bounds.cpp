@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "engine/clump_generator.hpp"
 #include "engine/contact_laws.hpp"
 #include "engine/simulation.hpp"
 #include "engine/timestep.hpp"
@@ -48,6 +49,11 @@ void check_generated_bed(const BoxTestScene& s) {
   require_setup(depth <= 1.8 * s.height, "/particles/count", s.count,
                 "few enough to fill at most 1.8 box heights at the initial porosity (needs " +
                     num(depth) + " m, box height " + num(s.height) + " m)");
+  if (s.clumps)
+    require_setup(s.clumps->d3 <= largest_d3(*s.clumps), "/particles/clump/d3", s.clumps->d3,
+                  "<= " + num(largest_d3(*s.clumps)) + " with balls_per_direction = " +
+                      std::to_string(s.clumps->balls_per_direction) +
+                      " (the central ball at least min_radius_fraction of the virtual sphere)");
 }
 
 void check_loading_bounds(const BoxTestScene& s, bool generated) {

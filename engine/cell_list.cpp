@@ -12,14 +12,25 @@ void CellList::build(const std::vector<Vec3>& positions, const Vec3& lo, const V
                      double min_cell_size) {
   lo_ = lo;
   const Vec3 extent = hi - lo;
-  for (int a = 0; a < 3; ++a) {
-    // Cap the grid so a tiny cell size cannot allocate billions of cells.
-    const double n = std::floor(extent[a] / min_cell_size);
-    dims_[a] = static_cast<int>(std::clamp(n, 1.0, 1024.0));
-    inv_size_[a] = dims_[a] / extent[a];
-  }
-  const std::size_t ncell = static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2];
   const Index n = static_cast<Index>(positions.size());
+  // Cap the grid at kMaxCellsPerBall cells a ball (and 1024 along an axis): tiny
+  // balls in a large domain (a clump of extension D3 = 100 has balls of 0.3 % of its
+  // size) asked for 10⁸ cells, gigabytes cleared at every build. Larger cells find
+  // the same pairs, in the same sorted order, with more distance tests.
+  const double max_cells = kMaxCellsPerBall * std::max(1.0, double(n));
+  std::size_t ncell = 0;
+  // At most 200 enlargements (a factor 4e19): a domain of infinite extent (a box
+  // 1e308 m high) never gets under the cap and keeps 1024 cells along that axis.
+  double size = min_cell_size;
+  for (int tries = 0; tries < 200; ++tries, size *= 1.25) {
+    for (int a = 0; a < 3; ++a) {
+      const double cells = std::floor(extent[a] / size);
+      dims_[a] = static_cast<int>(std::clamp(cells, 1.0, 1024.0));
+      inv_size_[a] = dims_[a] / extent[a];
+    }
+    ncell = static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2];
+    if (double(ncell) <= max_cells) break;
+  }
 
   // Counting sort by cell: serial, O(n), and it keeps balls in index order per cell.
   std::vector<int> cell(n);

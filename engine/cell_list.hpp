@@ -18,6 +18,9 @@ namespace ballast {
 
 class CellList {
  public:
+  // The grid's cap, in cells per ball (cell_list.cpp, CellList::build).
+  static constexpr double kMaxCellsPerBall = 16.0;
+
   void build(const std::vector<Vec3>& positions, const Vec3& lo, const Vec3& hi,
              double min_cell_size);
 

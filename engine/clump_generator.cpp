@@ -54,6 +54,17 @@ void validate_clump_params(const ClumpParams& q) {
     if (f.kind == ClumpParamKind::kChoice || f.allows(f.value(q))) continue;
     reject(std::string(f.name).c_str(), f.value(q), "not allowed (allowed: " + f.allowed() + ")");
   }
+  if (q.d3 > largest_d3(q)) {
+    std::ostringstream allowed;
+    allowed << "too large with balls_per_direction = " << q.balls_per_direction
+            << " (allowed: d3 <= " << largest_d3(q) << ", so that the central ball is at least "
+            << q.min_radius_fraction << " of the virtual sphere's radius)";
+    reject("d3", q.d3, allowed.str());
+  }
+}
+
+double largest_d3(const ClumpParams& q) {
+  return (1.0 / q.min_radius_fraction - 1.0) / std::max(1, q.balls_per_direction);
 }
 
 double virtual_sphere_radius(const ClumpParams& q) {

@@ -54,6 +54,12 @@ struct ClumpParams {
 // Throws std::invalid_argument naming the field, its value and what is allowed.
 void validate_clump_params(const ClumpParams& params);
 
+// The largest D3 for these parameters: the central ball, Rv / (1 + n·D3), at least
+// min_radius_fraction of the virtual sphere's radius. Far below it every ball is tiny
+// beside its particle, and the neighbour skin and the timestep shrink with it: a box
+// test with D3 = 100 had not finished growing 40 clumps after 5 minutes.
+double largest_d3(const ClumpParams& params);
+
 // Rv = virtual_sphere_factor · nominal_diameter / 2, m.
 double virtual_sphere_radius(const ClumpParams& params);
 // R = Rv / (1 + n·d3): the largest central ball for which every grown ball fits in

@@ -80,3 +80,23 @@ TEST(CellList, BallsOutsideTheGridAreStillFound) {
   EXPECT_EQ(a[0], 0);
   EXPECT_EQ(b[0], 1);
 }
+
+// Tiny balls in a large domain: the grid is capped at kMaxCellsPerBall cells a ball
+// (uncapped, this asked for 1024³ cells, 4 GB of counters), and the larger cells
+// still find exactly the brute-force pairs.
+TEST(CellList, TinyBallsInALargeDomainGetABoundedGrid) {
+  const double skin = 1e-5;
+  Config c = random_config(300, 7, 0.5);
+  for (double& r : c.r) r *= 0.01;  // 0.1-0.3 mm balls, a 0.61 mm cell asked for
+  for (Vec3& x : c.x) x *= 0.01;    // crowded into 5 mm, so that some touch
+  CellList cells;
+  cells.build(c.x, Vec3::Zero(), Vec3::Constant(10.0), 2 * 0.0003 + skin);
+  const auto d = cells.dims();
+  EXPECT_LE(double(d[0]) * d[1] * d[2], CellList::kMaxCellsPerBall * 300);
+  std::vector<Index> a, b, ea, eb;
+  find_candidate_pairs(cells, c.x, c.r, c.body, skin, a, b);
+  brute_force_pairs(c.x, c.r, c.body, skin, ea, eb);
+  ASSERT_GT(ea.size(), 10u);
+  EXPECT_EQ(a, ea);
+  EXPECT_EQ(b, eb);
+}

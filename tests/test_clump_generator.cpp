@@ -403,6 +403,12 @@ TEST(ClumpGenerator, BadParametersAreRejectedNamingTheField) {
   expect_error<std::invalid_argument>(
       [&] { validate_clump_params(with([](ClumpParams& q) { q.c = 1.0; })); },
       {"clump parameter 'c' = 1 is not allowed (allowed: in [0, 1) (fraction of R))"});
+  // n·D3 at most 1/min_radius_fraction − 1 = 19 (n = 2, min_radius_fraction 0.05): the
+  // central ball, Rv / (1 + n·D3), stays at least 5 % of the virtual sphere.
+  EXPECT_NO_THROW(validate_clump_params(with([](ClumpParams& q) { q.d3 = 9.5; })));
+  expect_error<std::invalid_argument>(
+      [&] { validate_clump_params(with([](ClumpParams& q) { q.d3 = 9.6; })); },
+      {"clump parameter 'd3' = 9.6 is too large with balls_per_direction = 2 (allowed: d3 <= 9.5"});
 }
 
 TEST(ClumpPresets, UnknownPresetListsTheAvailableOnes) {
