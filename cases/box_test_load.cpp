@@ -25,9 +25,8 @@ constexpr double kDeg = 180.0 / kPi;
 // in and what was dissipated, or its measurements are the integrator's, not the
 // bed's. Measured on tiny.json at every setting of tests/cli/test_extremes.py that
 // runs: at most 0.98 % (clumps with c = 0.99), 0.64 % (Hertz-Mindlin), the others
-// 0.27 %; on the smoke and full-scale
-// scenes 0.006-0.014 %; at a fixed dt of twice the critical estimate, 56 %
-// (docs/ACCURACY.md).
+// 0.27 %; on the smoke and full-scale scenes 0.006-0.014 %; at a fixed dt of twice the
+// critical estimate, 56 % (docs/ACCURACY.md).
 constexpr double kMaxCycleEnergyError = 0.05;
 
 // Throws SimulationError when the cycle's budget does not close, naming the timestep

@@ -20,11 +20,15 @@ double mean_order_step(std::span<const Vec3> centre, std::span<const Index> orde
 std::string describe(const SpatialOrder& o) {
   std::ostringstream out;
   out.precision(3);
-  out << (o.applied ? "bodies renumbered cell by cell, " : "numbering kept (sorting would number ")
-      << "xyz"[o.slowest_axis] << " slowest" << (o.applied ? "" : ")")
-      << ": mean step between consecutive bodies " << o.step_before << " -> "
-      << (o.applied ? o.step_after : o.step_before) << " cells of " << o.cell * 1e3 << " mm";
-  if (!o.applied) out << " (sorted: " << o.step_after << ")";
+  const char axis = "xyz"[o.slowest_axis];
+  if (o.applied)
+    out << "bodies renumbered cell by cell, " << axis << " slowest: mean step between "
+        << "consecutive bodies " << o.step_before << " -> " << o.step_after << " cells of "
+        << o.cell * 1e3 << " mm";
+  else
+    out << "numbering kept: mean step between consecutive bodies " << o.step_before << " cells of "
+        << o.cell * 1e3 << " mm (" << o.step_after << " sorted with " << axis
+        << " slowest; sorting pays above " << SpatialOrder::kPaysRatio << "x)";
   return out.str();
 }
 

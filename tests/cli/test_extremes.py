@@ -87,6 +87,15 @@ class Extremes(unittest.TestCase):
         self.assertIn("/numerics/dt", r.stderr)
         self.assertIn("x the critical estimate", r.stderr)
 
+    def test_values_past_a_bound_are_refused_at_parsing(self):
+        for sets, field in (((*CLUMPS, "/particles/clump/c=1"), "/particles/clump/c = 1"),
+                            (("/particles/count=1",), "/particles/count = 1")):
+            with self.subTest(field):
+                r = run(*sets)
+                self.assertEqual(r.returncode, 2, r.stderr[-2000:])
+                self.assertIn(field, r.stderr)
+                self.assertIn("allowed", r.stderr)
+
     def test_clumps_of_tiny_balls_are_refused_before_the_run(self):
         # D3 = 100 makes balls of 0.3 % of the particle: uncapped, the neighbour grid
         # took gigabytes; capped, the growth had not ended after 5 minutes.
