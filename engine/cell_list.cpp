@@ -13,9 +13,10 @@ void CellList::build(const std::vector<Vec3>& positions, const Vec3& lo, const V
   lo_ = lo;
   const Vec3 extent = hi - lo;
   const Index n = static_cast<Index>(positions.size());
-  // Cap the grid at kMaxCellsPerBall cells a ball (and 1024 along an axis): tiny
-  // balls in a large domain (a clump of extension D3 = 100 has balls of 0.3 % of its
-  // size) asked for 10⁸ cells, gigabytes cleared at every build. Larger cells find
+  // Cap the grid at kMaxCellsPerBall cells a ball (and 1024 along an axis). With the
+  // axis cap alone (up to 10⁹ cells), tiny balls in a large domain (a clump of
+  // extension D3 = 100 has balls of 0.3 % of its size) spent half a 2-minute run in
+  // the kernel, allocating and clearing the grid at every build. Larger cells find
   // the same pairs, in the same sorted order, with more distance tests.
   const double max_cells = kMaxCellsPerBall * std::max(1.0, double(n));
   std::size_t ncell = 0;

@@ -12,7 +12,8 @@ From make bench-peers' beds (build/peers/spheres.txt, sample1.txt) it makes:
 and times, round after round in turned order, our engine on 1 and 2 threads with the
 file's numbering kept (bench-bed --keep-file-order) and as the engine numbers it
 (Simulation::sort_bodies_spatially), and LAMMPS on 1 process, on each bed and on ours.
-Prints the medians, each against LAMMPS on the same bed, and the state hashes (a
+Prints the engine's decision on each bed's numbering (mean step between consecutive
+bodies, before and sorted), the medians, each against LAMMPS on the same bed, and the state hashes (a
 bed's shufflings sort to one numbering, so to one hash). Needs lmp (make bench-peers
 installs it). docs/PERFORMANCE.md, "Beds from elsewhere", quotes its output.
 """
@@ -22,6 +23,7 @@ import os
 import random
 import re
 import statistics
+import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -83,6 +85,15 @@ def ours_rate(ballast, path, steps, threads, keep):
     return r["ball_steps_per_s"], r["state_hash"]
 
 
+def numbering(ballast, path):
+    """The engine's decision on the bed's numbering, as bench-bed logs it."""
+    done = subprocess.run([ballast, "bench-bed", path, "--steps", "1", "--threads", "1"]
+                          + ballast_peer.physics_flags(Physics(steps=1)),
+                          capture_output=True, text=True, timeout=300)
+    lines = [l for l in done.stderr.splitlines() if "numbering kept" in l or "renumbered" in l]
+    return lines[0] if lines else f"(no numbering line; exit {done.returncode})"
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--rounds", type=int, default=5)
@@ -103,6 +114,8 @@ def main():
             ("ours-sample1", ours["sample1"], "sample1"),
             ("shuffled-sample1", shuffled(ours["sample1"], os.path.join(work, "shuffled-sample1.txt")),
              "sample1")]
+    for bed, path, _ in beds:
+        print(f"{bed}: {numbering(ballast, path)}", flush=True)
     runs = [(bed, code, threads, keep) for bed, _, _ in beds
             for code, threads, keep in (("ballast", 1, True), ("ballast", 1, False),
                                         ("ballast", 2, True), ("ballast", 2, False),
