@@ -3,6 +3,7 @@
 // per-ball or per-contact values, so they are identical for any thread count.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "engine/ball_store.hpp"
@@ -25,13 +26,24 @@ struct EnergyBudget {
   double friction_dissipated = 0.0;    // Coulomb slip
   double damping_dissipated = 0.0;     // PFC local damping
   double viscous_dissipated = 0.0;     // contact dashpots
+  // false: the run kept no ledger (SimulationSettings::energy_ledger); the work and
+  // dissipation terms are zero and the balance is unknown (NaN).
+  bool booked = true;
 
   double kinetic() const { return kinetic_translational + kinetic_rotational; }
   double dissipated() const {
     return friction_dissipated + damping_dissipated + viscous_dissipated;
   }
   // Mechanical energy now plus all that has left, minus all that was put in.
-  double balance() const { return kinetic() + elastic + dissipated() - gravity_work - wall_work; }
+  double balance() const {
+    if (!booked) return std::numeric_limits<double>::quiet_NaN();
+    return kinetic() + elastic + dissipated() - gravity_work - wall_work;
+  }
+  // Kinetic and elastic energy only: what is known without a ledger.
+  void drop_work() {
+    gravity_work = wall_work = friction_dissipated = damping_dissipated = viscous_dissipated = 0.0;
+    booked = false;
+  }
 };
 
 struct ContactStats {

@@ -78,9 +78,11 @@ template <bool kFriction>
 
 // Bookkeeping every touching contact does: flags, elastic normal force, energy.
 template <bool kDamped>
-[[gnu::always_inline]] inline void record(const ContactView& cl, Index c, const ContactResult& r) {
+[[gnu::always_inline]] inline void record(const ContactView& cl, Index c, const ContactResult& r,
+                                          bool ledger) {
   cl.active[c] = 1;
   cl.normal_force[c] = r.normal_force;
+  if (!ledger) return;
   // Slip work is zero unless the contact slides, which is rare once a bed settles.
   if (r.slip_work != 0.0) cl.slip_total[c] += r.slip_work;
   if constexpr (kDamped) cl.viscous_total[c] += r.viscous_work;
@@ -102,7 +104,7 @@ template <class Law, bool kFriction, bool kDamped>
   if constexpr (kFriction) hist = load(cl.shear_force[c]);
   const ContactResult r = Law::template force<kFriction, kDamped>(st, pp, hist);
   if constexpr (kFriction) store(cl.shear_force[c], hist);
-  record<kDamped>(cl, c, r);
+  record<kDamped>(cl, c, r, s.ledger);
   return r;
 }
 
@@ -139,6 +141,19 @@ template <class Law, bool kFriction, bool kDamped, bool kSpheres>
   // The contact point sits mid-overlap: li from i's centre, lj from j's.
   const double li = ri - 0.5 * overlap, lj = rj - 0.5 * overlap;
   if (kSpheres || (bodies.is_sphere[bi] && bodies.is_sphere[bj])) {
+    if constexpr (!kFriction) {
+      // Two frictionless spheres: the force lies along the normal, through both
+      // centres. It exerts no torque, and the spin velocity is normal to the normal,
+      // so the dashpot (which reads vrel·n) does not see it. Neither is computed: the
+      // torque is exactly zero instead of the roundoff of n × (Fn·n), and a sphere's
+      // spin does not change (no rotation of frictionless spheres to integrate).
+      st.vrel = load(bodies.velocity[bi]) - load(bodies.velocity[bj]);
+      const ContactResult r = evaluate<Law, kFriction, kDamped>(cl, c, st, pp, s);
+      f += r.force;
+      store(cl.b_wrench[c].force, -r.force);
+      store(cl.b_wrench[c].torque, V3{0.0, 0.0, 0.0});
+      return;
+    }
     // Two spheres: both lever arms lie along the normal (−li·n and +lj·n), so one
     // cross product gives the relative spin velocity and one both moments.
     st.vrel = (load(bodies.velocity[bi]) - load(bodies.velocity[bj])) -
@@ -192,15 +207,24 @@ template <class Law, bool kFriction, bool kDamped, bool kSpheres>
     return;
   }
   const Index bi = kSpheres ? i : balls.body[i];
-  const V3 arm = point - load(bodies.position[bi]);
   ContactState st;
   st.overlap = overlap;
   st.normal = normal;
-  st.vrel = velocity_at(bodies, bi, arm) - load(w.velocity);
   if constexpr (Law::kUsesRadius) st.radius = r;
   if constexpr (kDamped) st.m_eff = bodies.mass[bi];
-  const ContactResult res =
-      evaluate<Law, kFriction, kDamped>(cl, c, st, pairs.wall(balls.material[i], cl.b[c]), s);
+  const PairProperties& pp = pairs.wall(balls.material[i], cl.b[c]);
+  // A frictionless sphere: the force passes through its centre (ball_ball says why
+  // neither spin nor torque is computed).
+  if (!kFriction && (kSpheres || bodies.is_sphere[bi])) {
+    st.vrel = load(bodies.velocity[bi]) - load(w.velocity);
+    const ContactResult res = evaluate<Law, kFriction, kDamped>(cl, c, st, pp, s);
+    f += res.force;
+    store(cl.b_wrench[c].force, -res.force);
+    return;
+  }
+  const V3 arm = point - load(bodies.position[bi]);
+  st.vrel = velocity_at(bodies, bi, arm) - load(w.velocity);
+  const ContactResult res = evaluate<Law, kFriction, kDamped>(cl, c, st, pp, s);
   f += res.force;
   t += cross(arm, res.force);
   store(cl.b_wrench[c].force, -res.force);
@@ -232,7 +256,7 @@ void sphere_pass_simd(const BallStore& ball_store, const BodyStore& body_store,
   k.shear_force = kFriction ? flat(bc_list.shear_force) : nullptr;
   k.b_wrench = bc_list.b_wrench.empty() ? nullptr : bc_list.b_wrench.data()->force.data();
   k.normal_force = bc_list.normal_force.data();
-  k.slip_total = bc_list.slip_total.data();
+  k.slip_total = s.ledger ? bc_list.slip_total.data() : nullptr;
   k.active = bc_list.active.data();
   k.a_side = a_side_store.empty() ? nullptr : a_side_store.data()->force.data();
   sphere_kernel_ball_ball(k, lo, hi, s.sphere_kernel_lanes);

@@ -29,6 +29,7 @@ struct ForceSettings {
   double damping_ratio = 0.0;  // viscous contact damping ratio β (0: none)
   bool friction = true;        // false: frictionless scene, no shear history
   bool all_spheres = false;    // every body is one ball and ball k is body k
+  bool ledger = true;          // book slip and dashpot work (SimulationSettings::energy_ledger)
   // > 0: the ball–ball contacts go through the SIMD sphere kernel of that many lanes
   // (sphere_kernel.hpp): a scene of spheres only (all_spheres), of the linear law
   // (the kernel's; any other law ignores this), without dashpots,

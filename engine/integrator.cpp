@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include <omp.h>
 
@@ -25,6 +26,16 @@ namespace {
   return {local_damp(f.x, v.x, alpha), local_damp(f.y, v.y, alpha), local_damp(f.z, v.z, alpha)};
 }
 
+// Calls f(std::bool_constant<a>{}, std::bool_constant<b>{}): two run-time flags as
+// template arguments.
+template <class F>
+void with_flags(bool a, bool b, F&& f) {
+  const auto second = [&](auto first) {
+    b ? f(first, std::true_type{}) : f(first, std::false_type{});
+  };
+  a ? second(std::true_type{}) : second(std::false_type{});
+}
+
 struct ThreadReport {
   double shift2 = 0.0;
   Index bad = std::numeric_limits<Index>::max();
@@ -32,18 +43,18 @@ struct ThreadReport {
 
 // One body, one step, once gather_body_force has stored its resultant force and
 // torque. kDamped: local damping on (α > 0), a template argument so that undamped
-// scenes carry no test for it per body. kSpheres: a scene of spheres only
+// scenes carry no test for it per body. kLedger: the energy ledger is kept
+// (IntegratorSettings::ledger). kSpheres: a scene of spheres only
 // (IntegratorSettings::all_spheres), where body b is ball b and the clump path is
 // not compiled in; it also places the ball. In a clump scene the caller places the
 // balls afterwards (place_balls). The sphere kernel (sphere_kernel.hpp) does the
 // same operations for several spheres at once.
-template <bool kDamped, bool kSpheres>
+template <bool kDamped, bool kLedger, bool kSpheres>
 [[gnu::always_inline]] inline void update_body(const IntegratorSettings& s,
                                                const std::vector<Vec3>& reference,
                                                BodyStore& bodies, BallStore& balls, Index b,
                                                ThreadReport& out) {
   const double dt = s.dt, alpha = s.local_damping;
-  const double m = bodies.mass[b];
   const V3 f_raw = load(bodies.force[b]), m_raw = load(bodies.torque[b]);
   const V3 v_old = load(bodies.velocity[b]), w_old = load(bodies.angular_velocity[b]);
   const V3 f = kDamped ? local_damp(f_raw, v_old, alpha) : f_raw;
@@ -75,10 +86,12 @@ template <bool kDamped, bool kSpheres>
 
   // Energy ledger with mid-step velocities, so it matches the kinetic energy
   // change of the half-step velocities exactly: ΔKE = F·(v_old + v_new)/2·dt.
-  const V3 v_mid = 0.5 * (v_old + v_new), w_mid = 0.5 * (w_old + w_new);
-  bodies.gravity_work[b] += dt * m * dot(load(s.gravity), v_mid);
-  if constexpr (kDamped)
-    bodies.damping_dissipated[b] -= dt * (dot(f - f_raw, v_mid) + dot(torque - m_raw, w_mid));
+  if constexpr (kLedger) {
+    const V3 v_mid = 0.5 * (v_old + v_new), w_mid = 0.5 * (w_old + w_new);
+    bodies.gravity_work[b] += dt * bodies.mass[b] * dot(load(s.gravity), v_mid);
+    if constexpr (kDamped)
+      bodies.damping_dissipated[b] -= dt * (dot(f - f_raw, v_mid) + dot(torque - m_raw, w_mid));
+  }
 
   // Re-place the ball and measure how far it moved since the neighbour build.
   if constexpr (kSpheres) {
@@ -127,7 +140,7 @@ inline void place_balls(const std::vector<Vec3>& reference, const BodyStore& bod
 // balls (about 160 in Sample 1) stay in L1 between the loops.
 constexpr Index kBodyBlock = 16;
 
-template <bool kDamped, bool kSpheres>
+template <bool kDamped, bool kLedger, bool kSpheres>
 void step_bodies(const IntegratorSettings& s, ContactList& bc, const std::vector<Wrench>& a_side,
                  const std::vector<Vec3>& reference, BodyStore& bodies, BallStore& balls, Index lo,
                  Index hi, ThreadReport& out) {
@@ -140,7 +153,7 @@ void step_bodies(const IntegratorSettings& s, ContactList& bc, const std::vector
   if constexpr (kSpheres) {
     for (Index b = lo; b < hi; ++b) {
       gather_body_force<true>(b, bc, a_side, s.gravity, bodies, s.refresh_live);
-      update_body<kDamped, true>(s, reference, bodies, balls, b, mine);
+      update_body<kDamped, kLedger, true>(s, reference, bodies, balls, b, mine);
     }
   } else {
     for (Index b0 = lo; b0 < hi; b0 += kBodyBlock) {
@@ -148,7 +161,7 @@ void step_bodies(const IntegratorSettings& s, ContactList& bc, const std::vector
       for (Index b = b0; b < b1; ++b)
         gather_body_force<false>(b, bc, a_side, s.gravity, bodies, s.refresh_live);
       for (Index b = b0; b < b1; ++b)
-        update_body<kDamped, false>(s, reference, bodies, balls, b, mine);
+        update_body<kDamped, kLedger, false>(s, reference, bodies, balls, b, mine);
       for (Index b = b0; b < b1; ++b) place_balls(reference, bodies, balls, b, mine);
     }
   }
@@ -157,7 +170,7 @@ void step_bodies(const IntegratorSettings& s, ContactList& bc, const std::vector
 
 // A sphere scene with a SIMD kernel: each sphere's gather, then the leapfrog of the
 // share's spheres several at a time (sphere_kernel.hpp), the last few one by one.
-template <bool kDamped>
+template <bool kDamped, bool kLedger>
 void step_spheres_in_lanes(const IntegratorSettings& s, ContactList& bc,
                            const std::vector<Wrench>& a_side, const std::vector<Vec3>& reference,
                            BodyStore& bodies, BallStore& balls, Index lo, Index hi,
@@ -183,13 +196,14 @@ void step_spheres_in_lanes(const IntegratorSettings& s, ContactList& bc,
   u.local_damping = s.local_damping;
   for (int k = 0; k < 3; ++k) u.gravity[k] = s.gravity[k];
   u.max_speed = s.max_speed;
+  u.ledger = kLedger;
   SphereUpdateReport r;
   r.shift2 = out.shift2;
   r.bad = out.bad;
   const Index done = sphere_kernel_update(u, lo, hi, s.sphere_kernel_lanes, r);
   ThreadReport mine{r.shift2, r.bad};
   for (Index b = done; b < hi; ++b)
-    update_body<kDamped, true>(s, reference, bodies, balls, b, mine);
+    update_body<kDamped, kLedger, true>(s, reference, bodies, balls, b, mine);
   out = mine;
 }
 
@@ -208,18 +222,20 @@ void integrate(const IntegratorSettings& s, ContactList& ball_contacts,
         return long(first) + ball_contacts.b_first[first] + 4L * b;
       },
       s.split);
-  if (s.all_spheres && s.sphere_kernel_lanes > 0 && s.local_damping > 0.0)
-    step_spheres_in_lanes<true>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
-  else if (s.all_spheres && s.sphere_kernel_lanes > 0)
-    step_spheres_in_lanes<false>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
-  else if (s.local_damping > 0.0 && s.all_spheres)
-    step_bodies<true, true>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
-  else if (s.local_damping > 0.0)
-    step_bodies<true, false>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
-  else if (s.all_spheres)
-    step_bodies<false, true>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
-  else
-    step_bodies<false, false>(s, ball_contacts, a_side, reference, bodies, balls, lo, hi, mine);
+  // One instantiation per combination of local damping, ledger and sphere scene, so
+  // that a scene pays for none of them it does not use, not even a test per body.
+  with_flags(s.local_damping > 0.0, s.ledger, [&](auto damped, auto ledger) {
+    constexpr bool kDamped = decltype(damped)::value, kLedger = decltype(ledger)::value;
+    if (s.all_spheres && s.sphere_kernel_lanes > 0)
+      step_spheres_in_lanes<kDamped, kLedger>(s, ball_contacts, a_side, reference, bodies, balls,
+                                              lo, hi, mine);
+    else if (s.all_spheres)
+      step_bodies<kDamped, kLedger, true>(s, ball_contacts, a_side, reference, bodies, balls, lo,
+                                          hi, mine);
+    else
+      step_bodies<kDamped, kLedger, false>(s, ball_contacts, a_side, reference, bodies, balls, lo,
+                                           hi, mine);
+  });
 
 #pragma omp critical(ballast_integrate_report)
   {

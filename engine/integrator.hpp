@@ -27,6 +27,7 @@ struct IntegratorSettings {
   double max_speed = 100.0;     // m/s; faster is treated as a blow-up
   RotationIntegrator rotation = RotationIntegrator::kPfc;  // for clumps
   bool all_spheres = false;  // every body is one ball and ball k is body k
+  bool ledger = true;        // book gravity work and damping (SimulationSettings::energy_ledger)
   // > 0: a sphere scene's leapfrog runs in SIMD lanes, that many spheres a pass
   // (sphere_kernel.hpp; the same bits as one at a time).
   int sphere_kernel_lanes = 0;

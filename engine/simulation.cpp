@@ -393,8 +393,10 @@ void Simulation::run(long steps) {
 }
 
 EnergyBudget Simulation::energy() const {
-  return energy_budget(balls_, bodies_, materials_, walls_, ball_contacts_, wall_contacts_,
-                       wall_work_, law_);
+  EnergyBudget e = energy_budget(balls_, bodies_, materials_, walls_, ball_contacts_,
+                                 wall_contacts_, wall_work_, law_);
+  if (!settings_.energy_ledger) e.drop_work();
+  return e;
 }
 
 ContactStats Simulation::contacts() const {

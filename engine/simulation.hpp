@@ -66,6 +66,13 @@ struct SimulationSettings {
   // it has no dashpots (sphere_kernel.hpp): -1 the widest this CPU runs, 0 none (the
   // scalar pass), 4 AVX2, 8 AVX-512. Every choice gives the same bits.
   int simd_lanes = -1;
+  // Book every joule each step (the work of gravity, local damping, Coulomb slip and
+  // dashpots), so that energy() closes its balance: a blow-up check and a report the
+  // box test keeps. false: a scene that reports no energy budget (the peer benchmark's
+  // bed) does none of that work; energy() then gives kinetic and elastic energy only.
+  // It costs 1–4 % of a step's instructions (docs/PERFORMANCE.md, "What a scene pays
+  // for").
+  bool energy_ledger = true;
   std::ostream* log = nullptr;  // where the start-up report goes (nullptr: silent)
 };
 

@@ -30,7 +30,7 @@ template <class Io>
 void state_fields(Io& io, SimulationSettings& s) {
   io(s.domain_lo, s.domain_hi, s.gravity, s.local_damping, s.damping_ratio, s.fixed_dt, s.dt_safety,
      s.strict_timestep, s.skin, s.max_speed, s.contact_law, s.rotation, s.sphere_fast_path,
-     s.skip_far_candidates, s.adaptive_rebuild, s.simd_lanes);
+     s.skip_far_candidates, s.adaptive_rebuild, s.simd_lanes, s.energy_ledger);
 }
 
 template <class Io>

@@ -207,6 +207,7 @@ void Simulation::do_step() {
                          .damping_ratio = settings_.damping_ratio,
                          .friction = friction_,
                          .all_spheres = all_spheres_,
+                         .ledger = settings_.energy_ledger,
                          .sphere_kernel_lanes = kernel ? lanes : 0,
                          .refresh_live = refresh_live && !kernel,
                          .split = contact_split};
@@ -216,6 +217,7 @@ void Simulation::do_step() {
                               .max_speed = settings_.max_speed,
                               .rotation = settings_.rotation,
                               .all_spheres = all_spheres_,
+                              .ledger = settings_.energy_ledger,
                               .sphere_kernel_lanes = all_spheres_ ? lanes : 0,
                               .refresh_live = refresh_live || make_flat,
                               .split = integrate_split};

@@ -48,7 +48,7 @@ struct SphereKernelView {
   double* shear_force;   // N, 3 per contact; null in a frictionless scene
   double* b_wrench;      // 6 per contact
   double* normal_force;  // N, per contact
-  double* slip_total;    // J, per contact
+  double* slip_total;    // J, per contact; null: no energy ledger
   std::uint8_t* active;  // per contact
   double* a_side;        // 6 per ball: set here to the sum of its side-a ball–ball wrenches
 };
@@ -74,6 +74,7 @@ struct SphereUpdateView {
   double local_damping;        // PFC α (0: off)
   double gravity[3];           // m/s²
   double max_speed;            // m/s
+  bool ledger;                 // book gravity work and damping (the energy ledger)
 };
 
 // What the update saw: the largest squared move since the reference (m²) and the

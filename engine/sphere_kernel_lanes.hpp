@@ -111,11 +111,17 @@ template <bool kFriction, bool kOneMaterial>
     }
     f = f + s;
   }
-  const L3 nxf = cross(normal, f);
   // An open contact stores zeros (forces.cpp open_contact): +0, which adds nothing.
   const L3 o{zero, zero, zero};
-  const L3 fa = select(touch, f, o), ta = select(touch, (-li) * nxf, o);
-  const L3 fb = select(touch, -f, o), tb = select(touch, (-lj) * nxf, o);
+  const L3 fa = select(touch, f, o), fb = select(touch, -f, o);
+  // Without friction the force passes through both centres: zero torque, as the
+  // scalar pass stores it (forces.cpp ball_ball).
+  L3 ta = o, tb = o;
+  if constexpr (kFriction) {
+    const L3 nxf = cross(normal, f);
+    ta = select(touch, (-li) * nxf, o);
+    tb = select(touch, (-lj) * nxf, o);
+  }
   s = select(touch, s, o);
   alignas(64) double out[kRows][kLanes];
   const auto put = [&](int row, vd x) { *reinterpret_cast<vd*>(out[row]) = x; };
@@ -150,7 +156,7 @@ template <bool kFriction, bool kOneMaterial>
   // Slip work, only where a lane slid (rare once a bed settles): touching slip_total
   // for every contact would pull its cache lines in every step.
   if constexpr (kFriction) {
-    if (sliding_lanes != 0)
+    if (sliding_lanes != 0 && v.slip_total != nullptr)
       for (int k = 0; k < n; ++k)
         if ((sliding_lanes >> k) & 1) v.slip_total[cc[k]] += out[kSlip][k];
   }

@@ -27,7 +27,7 @@ namespace {
   return {local_damp(f.x, v.x, alpha), local_damp(f.y, v.y, alpha), local_damp(f.z, v.z, alpha)};
 }
 
-template <bool kDamped>
+template <bool kDamped, bool kLedger>
 [[gnu::always_inline]] inline void update_lanes(const SphereUpdateView& u, std::int32_t b0,
                                                 vd& shift2, SphereUpdateReport& report) {
   const long o = 3L * b0;
@@ -45,16 +45,18 @@ template <bool kDamped>
   store_aos3(u.angular_velocity + o, w_new);
   store_aos3(u.rotation + o, load_aos3(u.rotation + o) + dt * w_new);
 
-  const vd half = splat(0.5);
-  const L3 v_mid = half * (v_old + v_new);
-  const L3 g{splat(u.gravity[0]), splat(u.gravity[1]), splat(u.gravity[2])};
-  storeu(u.gravity_work + b0,
-         loadu(u.gravity_work + b0) + (dt * loadu(u.mass + b0)) * dot(g, v_mid));
-  if constexpr (kDamped) {
-    const L3 w_mid = half * (w_old + w_new);
-    storeu(u.damping_dissipated + b0,
-           loadu(u.damping_dissipated + b0) -
-               dt * (dot(f - f_raw, v_mid) + dot(torque - m_raw, w_mid)));
+  if constexpr (kLedger) {
+    const vd half = splat(0.5);
+    const L3 v_mid = half * (v_old + v_new);
+    const L3 g{splat(u.gravity[0]), splat(u.gravity[1]), splat(u.gravity[2])};
+    storeu(u.gravity_work + b0,
+           loadu(u.gravity_work + b0) + (dt * loadu(u.mass + b0)) * dot(g, v_mid));
+    if constexpr (kDamped) {
+      const L3 w_mid = half * (w_old + w_new);
+      storeu(u.damping_dissipated + b0,
+             loadu(u.damping_dissipated + b0) -
+                 dt * (dot(f - f_raw, v_mid) + dot(torque - m_raw, w_mid)));
+    }
   }
 
   store_aos3(u.ball_position + o, x_new);
@@ -69,13 +71,13 @@ template <bool kDamped>
   if (bits != 0 && b0 + __builtin_ctz(bits) < report.bad) report.bad = b0 + __builtin_ctz(bits);
 }
 
-template <bool kDamped>
+template <bool kDamped, bool kLedger>
 std::int32_t update_spheres(const SphereUpdateView& view, std::int32_t lo, std::int32_t hi,
                             SphereUpdateReport& report) {
   const SphereUpdateView u = view;  // a local copy: the stores may alias the view
   vd shift2 = splat(report.shift2);
   std::int32_t b = lo;
-  for (; b + kLanes <= hi; b += kLanes) update_lanes<kDamped>(u, b, shift2, report);
+  for (; b + kLanes <= hi; b += kLanes) update_lanes<kDamped, kLedger>(u, b, shift2, report);
   alignas(64) double lane_shift2[kLanes];
   storeu(lane_shift2, shift2);
   for (int k = 0; k < kLanes; ++k)
@@ -83,12 +85,15 @@ std::int32_t update_spheres(const SphereUpdateView& view, std::int32_t lo, std::
   return b;
 }
 
-// The update for this instruction set: local damping is a template argument, so
-// that an undamped scene carries no test for it.
+// The update for this instruction set: local damping and the ledger are template
+// arguments, so that a scene without them carries no test for them.
 std::int32_t update_contiguous_spheres(const SphereUpdateView& u, std::int32_t lo, std::int32_t hi,
                                        SphereUpdateReport& report) {
-  return u.local_damping > 0.0 ? update_spheres<true>(u, lo, hi, report)
-                               : update_spheres<false>(u, lo, hi, report);
+  if (u.local_damping > 0.0)
+    return u.ledger ? update_spheres<true, true>(u, lo, hi, report)
+                    : update_spheres<true, false>(u, lo, hi, report);
+  return u.ledger ? update_spheres<false, true>(u, lo, hi, report)
+                  : update_spheres<false, false>(u, lo, hi, report);
 }
 
 }  // namespace

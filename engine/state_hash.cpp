@@ -1,5 +1,7 @@
 #include "engine/state_hash.hpp"
 
+#include <cstddef>
+
 #include "engine/fnv1a.hpp"
 #include "engine/simulation.hpp"
 
@@ -11,7 +13,8 @@ namespace {
 static_assert(sizeof(Vec3) == 3 * sizeof(double));
 static_assert(sizeof(Quat) == 4 * sizeof(double));
 // Every field of the budget is hashed by name below: a new one must be added there.
-static_assert(sizeof(EnergyBudget) == 8 * sizeof(double));
+static_assert(sizeof(EnergyBudget) == 9 * sizeof(double) &&
+              offsetof(EnergyBudget, booked) == 8 * sizeof(double));
 
 void fold_motion(Fnv1a& f, const BodyStore& bodies) {
   f.all(bodies.position);
@@ -57,6 +60,7 @@ std::uint64_t state_hash(const Simulation& sim) {
   for (double v : {e.kinetic_translational, e.kinetic_rotational, e.elastic, e.gravity_work,
                    e.wall_work, e.friction_dissipated, e.damping_dissipated, e.viscous_dissipated})
     f.value(v);
+  f.value(e.booked ? 1.0 : 0.0);
   for (const Wall& w : sim.walls()) {
     for (const Vec3* v : {&w.point, &w.normal, &w.lo, &w.hi, &w.velocity, &w.displacement})
       f.value(*v);
