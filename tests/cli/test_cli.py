@@ -120,14 +120,17 @@ class RunCommand(unittest.TestCase):
                 self.assertTrue(s["loaded"])
                 # The servo follows the 0.75 -> 10 -> 0.75 kN pulse. It is a
                 # proportional servo, so it lags by the speed the bed gives way at:
-                # the sphere bed yields 0.1 mm in the 17 ms of loading at 30 Hz
-                # (rms error 128 N), the clump bed 13 µm (rms 14 N). Bounds: about
-                # twice what is measured.
-                bound = 250.0 if s is self.spheres else 30.0
-                self.assertLess(s["rms_force_error_N"], bound)
-                # Loading moves the sleeper down: measured 99 µm (spheres) and
-                # 13 µm (clumps); bounds a factor 3 either side.
-                lo, hi = (33e-6, 300e-6) if s is self.spheres else (4e-6, 40e-6)
+                # its rms error over the settlement at peak, in the 17 ms of loading
+                # at 30 Hz, was 1.29e6 and 1.46e6 N/m in two realisations of the
+                # sphere bed (128 N for 99 µm, 408 N for 280 µm) and 1.15e6 N/m for
+                # the clump bed (19 N for 17 µm). Bounds: twice that ratio, and a
+                # tenth of the pulse's 9.25 kN swing.
+                self.assertLess(s["rms_force_error_N"], 3e6 * s["settlement_peak_m"])
+                self.assertLess(s["rms_force_error_N"], 925.0)
+                # Loading moves the sleeper down: measured 99 and 280 µm (spheres,
+                # two realisations) and 13 and 17 µm (clumps); bounds a factor 3
+                # either side of their range.
+                lo, hi = (33e-6, 840e-6) if s is self.spheres else (4e-6, 51e-6)
                 self.assertGreater(s["settlement_peak_m"], lo)
                 self.assertLess(s["settlement_peak_m"], hi)
                 self.assertGreater(s["contacts_peak"]["mean_force_N"],

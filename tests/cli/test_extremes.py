@@ -61,20 +61,27 @@ def run(*sets):
 
 
 class Extremes(unittest.TestCase):
+    def assert_closed_budget(self, r, what):
+        self.assertEqual(r.returncode, 0, r.stderr[-2000:])
+        d = json.loads(r.stdout)
+        self.assertTrue(all(math.isfinite(x) for x in floats(d)))
+        cycle = next(s for s in d["stages"] if s["name"] == "cycle")
+        scale = max(abs(cycle["energy_in_J"]), cycle["energy_dissipated_J"])
+        error = abs(cycle["energy_error_J"]) / scale
+        print(f"  {what}: load cycle's energy error {100 * error:.3f} % of "
+              f"{scale:.3g} J")  # the figures docs/ACCURACY.md quotes
+        # Measured at most 0.98 % (c = 0.99); the run refuses above 5 %.
+        self.assertLess(error, 0.05)
+
+    def assert_blow_up_named(self, r):
+        self.assertEqual(r.returncode, 1, r.stderr[-2000:])
+        self.assertRegex(r.stderr, r"step \d+: body \d+")
+        self.assertIn("critical estimate", r.stderr)
+
     def test_each_extreme_runs_with_a_closed_budget(self):
         for what, sets in RUNS:
             with self.subTest(what):
-                r = run(*sets)
-                self.assertEqual(r.returncode, 0, r.stderr[-2000:])
-                d = json.loads(r.stdout)
-                self.assertTrue(all(math.isfinite(x) for x in floats(d)))
-                cycle = next(s for s in d["stages"] if s["name"] == "cycle")
-                scale = max(abs(cycle["energy_in_J"]), cycle["energy_dissipated_J"])
-                error = abs(cycle["energy_error_J"]) / scale
-                print(f"  {what}: load cycle's energy error {100 * error:.3f} % of "
-                      f"{scale:.3g} J")  # the figures docs/ACCURACY.md quotes
-                # Measured at most 0.98 % (c = 0.99); the run refuses above 5 %.
-                self.assertLess(error, 0.05)
+                self.assert_closed_budget(run(*sets), what)
 
     def test_twice_the_critical_timestep_fails_naming_dt_and_the_step(self):
         # At 2.4e-6 s (about twice the critical estimate) tiny.json does not blow up:
@@ -104,20 +111,21 @@ class Extremes(unittest.TestCase):
         self.assertIn("/particles/clump/d3 = 100", r.stderr)
         self.assertIn("<= 9.5", r.stderr)
 
-    def test_nearly_coincident_clump_balls_blow_up_naming_the_step(self):
-        # D3 = 0.01: every clump's balls nearly coincide and their contacts stack;
-        # the bed blows up during compaction at 0.8 of the critical estimate
-        # (docs/ACCURACY.md, "Where each knob breaks").
-        r = run(*CLUMPS, "/particles/clump/d3=0.01")
-        self.assertEqual(r.returncode, 1, r.stderr[-2000:])
-        self.assertRegex(r.stderr, r"step \d+: body \d+")
-        self.assertIn("critical estimate", r.stderr)
+    def test_nearly_coincident_clump_balls_run_or_blow_up_naming_the_step(self):
+        # D3 = 0.01: every clump's balls nearly coincide and their contacts stack.
+        # At 0.8 of the critical estimate some realisations blow up in preparation
+        # (seeds 2 and 4 of 1-6), the others run with a closed budget (docs/ACCURACY.md,
+        # "Where each knob breaks"): either ending is allowed, nothing else.
+        for seed in (1, 2):
+            with self.subTest(seed=seed):
+                r = run(*CLUMPS, "/particles/clump/d3=0.01", f"/particles/seed={seed}")
+                if r.returncode == 0:
+                    self.assert_closed_budget(r, f"clumps, D3 = 0.01, seed {seed}")
+                else:
+                    self.assert_blow_up_named(r)
 
     def test_far_above_critical_blows_up_at_once_naming_the_step(self):
-        r = run("/numerics/dt=1e-4")
-        self.assertEqual(r.returncode, 1, r.stderr[-2000:])
-        self.assertRegex(r.stderr, r"step \d+: body \d+")
-        self.assertIn("critical estimate", r.stderr)
+        self.assert_blow_up_named(run("/numerics/dt=1e-4"))
 
 
 if __name__ == "__main__":
