@@ -18,6 +18,7 @@ Simulation make_bench_bed(const Packing& packing, const BenchBedOptions& o) {
   s.rotation = o.rotation;
   s.skip_far_candidates = o.skip_far_candidates;
   s.simd_lanes = o.simd_lanes;
+  s.energy_ledger = o.energy_ledger;
   s.log = o.log;
   Simulation sim(s);
   const double k = entity_stiffness_for_contact(o.contact_stiffness);

@@ -42,6 +42,9 @@ struct BenchBedOptions {
   // Keep the file's numbering even where sorting pays (Simulation::sort_bodies_spatially):
   // measures what the sort buys.
   bool keep_file_order = false;
+  // SimulationSettings::energy_ledger. Off: the benchmark reports kinetic energy only,
+  // and the peers book no energy either; on measures what the ledger costs.
+  bool energy_ledger = false;
   std::ostream* log = nullptr;  // dt report and warnings
 };
 

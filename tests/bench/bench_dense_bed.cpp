@@ -9,7 +9,8 @@
 // The random_order:1 variants number the same bed's bodies at random, random_order:2
 // at random and then by the engine's spatial sort (a packing file from another code,
 // Simulation::sort_bodies_spatially); fast_path:0
-// runs the general (clump-capable) path on the same spheres.
+// runs the general (clump-capable) path on the same spheres; ledger:0 keeps no
+// energy ledger (SimulationSettings::energy_ledger), to show what it costs.
 //
 // EnergyDrift: what a larger timestep costs in accuracy. 300 undamped frictional
 // spheres fall into the box at 10 g for 0.05 s; drift is |energy balance| over the
@@ -29,7 +30,7 @@ namespace {
 void DenseBed(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   omp_set_num_threads(threads);
-  Simulation sim = settled_dense_bed(static_cast<BedOrder>(state.range(1)));
+  Simulation sim = settled_dense_bed(static_cast<BedOrder>(state.range(1)), state.range(3) == 1);
   sim.set_sphere_fast_path(state.range(2) == 1);
   const long steps_per_iteration = 200;
   const long builds0 = sim.neighbour_builds();
@@ -49,16 +50,19 @@ void DenseBed(benchmark::State& state) {
 // at random and sorted by the engine, to show that the sort wins it back. Third:
 // 1 = the sphere-only scene's fast path (the default), 0 = the general path, to
 // show what that is worth (the two end in the same bits: test_determinism).
+// Fourth: 1 = the energy ledger kept (as the box test keeps it), 0 = none.
 BENCHMARK(DenseBed)
-    ->Args({1, 0, 1})
-    ->Args({2, 0, 1})
-    ->Args({1, 1, 1})
-    ->Args({2, 1, 1})
-    ->Args({1, 2, 1})
-    ->Args({2, 2, 1})
-    ->Args({1, 0, 0})
-    ->Args({2, 0, 0})
-    ->ArgNames({"threads", "random_order", "fast_path"})
+    ->Args({1, 0, 1, 1})
+    ->Args({2, 0, 1, 1})
+    ->Args({1, 1, 1, 1})
+    ->Args({2, 1, 1, 1})
+    ->Args({1, 2, 1, 1})
+    ->Args({2, 2, 1, 1})
+    ->Args({1, 0, 0, 1})
+    ->Args({2, 0, 0, 1})
+    ->Args({1, 0, 1, 0})
+    ->Args({2, 0, 1, 0})
+    ->ArgNames({"threads", "random_order", "fast_path", "ledger"})
     ->UseRealTime()
     ->MinTime(3.0)
     ->Unit(benchmark::kMillisecond);

@@ -9,9 +9,11 @@ namespace ballast {
 // random and then by the engine's spatial sort (as a packing file from another code).
 enum class BedOrder { kSpatial = 0, kRandom = 1, kRandomEngineSorted = 2 };
 
-// Pours and settles a bed; benchmarks step copies of it.
-inline Simulation pour_dense_bed(BedOrder order) {
+// Pours and settles a bed; benchmarks step copies of it. `ledger`:
+// SimulationSettings::energy_ledger (the bed's bits do not depend on it).
+inline Simulation pour_dense_bed(BedOrder order, bool ledger = true) {
   BedOptions o;  // 1,936 spheres of 36.25 mm, kn = ks = 5.08e9 N/m
+  o.sim.energy_ledger = ledger;
   o.spatial_order = order == BedOrder::kSpatial;
   o.engine_sort = order == BedOrder::kRandomEngineSorted;
   o.friction = 0.5;
@@ -31,7 +33,11 @@ inline Simulation pour_dense_bed(BedOrder order) {
 }
 
 // Poured once per process and per body order.
-inline const Simulation& settled_dense_bed(BedOrder order) {
+inline const Simulation& settled_dense_bed(BedOrder order, bool ledger = true) {
+  if (!ledger) {
+    static const Simulation unbooked = pour_dense_bed(order, false);
+    return unbooked;  // only ever asked for in spatial order
+  }
   static const Simulation spatial = pour_dense_bed(BedOrder::kSpatial);
   if (order == BedOrder::kSpatial) return spatial;
   if (order == BedOrder::kRandom) {

@@ -185,6 +185,7 @@ void run(BenchBedArgs& a) {
                               {"ball_wall_candidates", sim.wall_contacts().size()},
                               {"skip_far_candidates", a.bed.skip_far_candidates},
                               {"keep_file_order", a.bed.keep_file_order},
+                              {"energy_ledger", a.bed.energy_ledger},
                               {"sphere_kernel", sphere_kernel_name(sim.sphere_kernel_lanes())},
                               {"rotation", a.rotation},
                               {"seconds", seconds},
@@ -269,6 +270,9 @@ void register_bench_bed_command(CLI::App& app) {
   cmd->add_flag("--keep-file-order", a->bed.keep_file_order,
                 "keep the file's numbering of the bodies even where numbering them cell by "
                 "cell pays (measures what the engine's spatial sort buys)");
+  cmd->add_flag("--energy-ledger", a->bed.energy_ledger,
+                "book every joule each step (gravity, damping, slip), as the box test does; "
+                "measures what the ledger costs (off: kinetic energy only, as the peers)");
   cmd->add_option("--simd-lanes", a->bed.simd_lanes,
                   "SIMD lanes of a sphere bed's contact kernel: -1 the widest this CPU runs, 0 "
                   "none (one contact at a time), 4 AVX2, 8 AVX-512; the same bits")
