@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <limits>
 #include <string>
 
 #include "engine/clump_generator.hpp"
@@ -28,6 +30,26 @@ constexpr double kMinStepsPerCycle = 20.0;
 // Porosity grid cubes in the column under the sleeper, at most: the grid is walked
 // cube by cube (engine/porosity.cpp), so a grid of nanometre cubes would never end.
 constexpr double kMaxCubes = 1e8;
+// What a box test holds in memory, bytes: a fixed part (the program, its libraries,
+// HDF5; 18.4 MB measured) and a part per ball (its stores, its neighbour candidates
+// and their histories, the cell list, the snapshots; 0.72-0.96 kB measured once the
+// bed has settled). Peak resident sizes of whole box tests, docs/ACCURACY.md, "The
+// largest bed"; about 30 % to spare.
+constexpr double kFixedBytes = 24e6;
+constexpr double kBytesPerBall = 1250.0;
+
+// Memory the machine can give a new run now, bytes (MemAvailable of /proc/meminfo);
+// 0 where it cannot be read (no check then).
+double available_memory() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  double kib = 0.0;
+  while (in >> key) {
+    if (key == "MemAvailable:" && in >> kib) return 1024.0 * kib;
+    in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  }
+  return 0.0;
+}
 
 }  // namespace
 
@@ -54,6 +76,23 @@ void check_generated_bed(const BoxTestScene& s) {
                   "<= " + num(largest_d3(*s.clumps)) + " with balls_per_direction = " +
                       std::to_string(s.clumps->balls_per_direction) +
                       " (the central ball at least min_radius_fraction of the virtual sphere)");
+  check_memory(s);
+}
+
+// The bed the run would build fits in the memory free now: a bed too large is refused
+// before anything is computed, not met by the kernel's out-of-memory killer hours in.
+void check_memory(const BoxTestScene& s) {
+  const double have = available_memory();
+  if (have <= 0.0) return;
+  const double balls_per_particle = s.clumps ? expected_ball_count(*s.clumps) : 1.0;
+  const double need = kFixedBytes + kBytesPerBall * balls_per_particle * double(s.count);
+  const double most = std::floor((have - kFixedBytes) / (kBytesPerBall * balls_per_particle));
+  const double gib = 1024.0 * 1024.0 * 1024.0;
+  require_setup(need <= have, "/particles/count", s.count,
+                "at most " + num(std::max(0.0, most)) + " particles (" + num(balls_per_particle) +
+                    (s.clumps ? " balls each on average" : " ball each") +
+                    ") on this machine: they would need about " + num(need / gib) + " GiB, and " +
+                    num(have / gib) + " GiB is available");
 }
 
 void check_loading_bounds(const BoxTestScene& s, bool generated) {

@@ -95,13 +95,19 @@ class Extremes(unittest.TestCase):
         self.assertIn("x the critical estimate", r.stderr)
 
     def test_values_past_a_bound_are_refused_at_parsing(self):
+        # A billion spheres in a square kilometre: a bed the box holds, but no machine's
+        # memory (about 1 kB a ball): refused before anything is computed.
+        huge = ("/box/length=1000", "/box/width=1000", "/particles/count=1000000000")
         for sets, field in (((*CLUMPS, "/particles/clump/c=1"), "/particles/clump/c = 1"),
-                            (("/particles/count=1",), "/particles/count = 1")):
+                            (("/particles/count=1",), "/particles/count = 1"),
+                            (huge, "/particles/count = 1000000000")):
             with self.subTest(field):
                 r = run(*sets)
                 self.assertEqual(r.returncode, 2, r.stderr[-2000:])
                 self.assertIn(field, r.stderr)
                 self.assertIn("allowed", r.stderr)
+        r = run(*huge)
+        self.assertIn("GiB is available", r.stderr)
 
     def test_clumps_of_tiny_balls_are_refused_before_the_run(self):
         # D3 = 100 makes balls of 0.3 % of the particle: uncapped, the neighbour grid
