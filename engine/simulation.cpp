@@ -216,9 +216,11 @@ void Simulation::set_body_angular_velocity(Index body, const Vec3& w) {
 void Simulation::quench() {
   for (Index b = 0; b < bodies_.size(); ++b) {
     // Book each body's kinetic energy as damping, so the energy budget still closes.
-    const Vec3 w = bodies_.orientation[b].conjugate() * bodies_.angular_velocity[b];
-    bodies_.damping_dissipated[b] += 0.5 * bodies_.mass[b] * bodies_.velocity[b].squaredNorm() +
-                                     0.5 * w.dot(bodies_.inertia[b].cwiseProduct(w));
+    if (settings_.energy_ledger) {
+      const Vec3 w = bodies_.orientation[b].conjugate() * bodies_.angular_velocity[b];
+      bodies_.damping_dissipated[b] += 0.5 * bodies_.mass[b] * bodies_.velocity[b].squaredNorm() +
+                                       0.5 * w.dot(bodies_.inertia[b].cwiseProduct(w));
+    }
     bodies_.velocity[b].setZero();
     bodies_.angular_velocity[b].setZero();
     bodies_.angular_momentum[b].setZero();

@@ -71,7 +71,8 @@ struct SimulationSettings {
   // box test keeps. false: a scene that reports no energy budget (the peer benchmark's
   // bed) does none of that work; energy() then gives kinetic and elastic energy only.
   // It costs 1–4 % of a step's instructions (docs/PERFORMANCE.md, "What a scene pays
-  // for").
+  // for"). A moving wall's work is summed either way: a few operations per wall, from
+  // the force its servo measures anyway.
   bool energy_ledger = true;
   std::ostream* log = nullptr;  // where the start-up report goes (nullptr: silent)
 };
