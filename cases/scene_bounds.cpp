@@ -51,6 +51,22 @@ double available_memory() {
   return 0.0;
 }
 
+// The bed the run would build fits in the memory free now: a bed too large is refused
+// before anything is computed, not met by the kernel's out-of-memory killer hours in.
+void check_memory(const BoxTestScene& s) {
+  const double have = available_memory();
+  if (have <= 0.0) return;
+  const double balls_per_particle = s.clumps ? expected_ball_count(*s.clumps) : 1.0;
+  const double need = kFixedBytes + kBytesPerBall * balls_per_particle * double(s.count);
+  const double most = std::floor((have - kFixedBytes) / (kBytesPerBall * balls_per_particle));
+  const double gib = 1024.0 * 1024.0 * 1024.0;
+  require_setup(need <= have, "/particles/count", s.count,
+                "at most " + num(std::max(0.0, most)) + " particles (" + num(balls_per_particle) +
+                    (s.clumps ? " balls each on average" : " ball each") +
+                    ") on this machine: they would need about " + num(need / gib) + " GiB, and " +
+                    num(have / gib) + " GiB is available");
+}
+
 }  // namespace
 
 // A count that fills the floor at least one diameter deep, loose, and at most 1.8 box
@@ -77,22 +93,6 @@ void check_generated_bed(const BoxTestScene& s) {
                       std::to_string(s.clumps->balls_per_direction) +
                       " (the central ball at least min_radius_fraction of the virtual sphere)");
   check_memory(s);
-}
-
-// The bed the run would build fits in the memory free now: a bed too large is refused
-// before anything is computed, not met by the kernel's out-of-memory killer hours in.
-void check_memory(const BoxTestScene& s) {
-  const double have = available_memory();
-  if (have <= 0.0) return;
-  const double balls_per_particle = s.clumps ? expected_ball_count(*s.clumps) : 1.0;
-  const double need = kFixedBytes + kBytesPerBall * balls_per_particle * double(s.count);
-  const double most = std::floor((have - kFixedBytes) / (kBytesPerBall * balls_per_particle));
-  const double gib = 1024.0 * 1024.0 * 1024.0;
-  require_setup(need <= have, "/particles/count", s.count,
-                "at most " + num(std::max(0.0, most)) + " particles (" + num(balls_per_particle) +
-                    (s.clumps ? " balls each on average" : " ball each") +
-                    ") on this machine: they would need about " + num(need / gib) + " GiB, and " +
-                    num(have / gib) + " GiB is available");
 }
 
 void check_loading_bounds(const BoxTestScene& s, bool generated) {

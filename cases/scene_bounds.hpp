@@ -10,9 +10,8 @@
 namespace ballast {
 
 // Particles smaller than the box, and a count that makes a bed in it and fits in the
-// memory this machine has free (check_memory).
+// memory this machine has free.
 void check_generated_bed(const BoxTestScene& s);
-void check_memory(const BoxTestScene& s);
 
 // The sleeper's load, speed and cycles against the ball's material, through the
 // timestep estimate of one sphere (engine/timestep.hpp). `generated`: the particles
