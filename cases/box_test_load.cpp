@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <ostream>
 #include <stdexcept>
 
@@ -76,6 +77,15 @@ void measure_porosity(const BoxTestScene& s, const Simulation& sim, double x0, d
   out.porosity_grid =
       grid_porosity(sim.balls(), Vec3(x0, 0.0, 0.0), Vec3(x1, s.width, bottom), s.cube_side)
           .porosity;
+  // The same grid one nominal diameter away from the side walls, the base and the
+  // bed's top: the layers a flat boundary loosens are left out (the paper does not
+  // say whether its column kept them). NaN where the column is too thin for it.
+  const double d = s.diameter;
+  out.porosity_grid_interior = std::numeric_limits<double>::quiet_NaN();
+  if (s.width - 2.0 * d >= s.cube_side && bottom - 2.0 * d >= s.cube_side)
+    out.porosity_grid_interior = grid_porosity(sim.balls(), Vec3(x0, d, d),
+                                               Vec3(x1, s.width - d, bottom - d), s.cube_side)
+                                     .porosity;
   // Measurement spheres count the overlaps inside a clump twice: spheres only
   // (decided by the bodies, so that an imported packing is judged by what it holds).
   const auto& is_sphere = sim.bodies().is_sphere;
@@ -123,7 +133,8 @@ CycleLoop seat_sleeper(const BoxTestScene& s, Simulation& sim, BoxTestResult& ou
   measure_porosity(s, sim, loop.x0, loop.x1, top, out);
   if (log)
     *log << "stage 4: sleeper " << s.sleeper_length * 1e3 << " mm long on the bed at " << top * 1e3
-         << " mm; grid porosity under it " << out.porosity_grid << "\n";
+         << " mm; grid porosity under it " << out.porosity_grid << " (interior "
+         << out.porosity_grid_interior << ")\n";
 
   // Seat the sleeper: down to the bed until it carries the preload, then let the
   // bed come to equilibrium under it.

@@ -106,6 +106,7 @@ struct BoxTestResult {
   // and PFC measurement spheres on the column's axis (spheres only: the balls of a
   // clump overlap, and a measurement sphere would count the overlaps twice).
   double porosity_grid = 0.0;
+  double porosity_grid_interior = 0.0;  // one nominal diameter inside walls, base and top
   std::vector<double> sphere_heights, porosity_spheres;  // m, -
   double bed_height = 0.0;                               // m, top of the bed under the sleeper
 

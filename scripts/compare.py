@@ -107,6 +107,10 @@ def quantities(run, paper=None):
     a, p = run.attribute, paper_values(run) if paper is None else paper
     rows = [("porosity_grid", "porosity, 5 mm grid under the sleeper", a("porosity_grid"),
              p.get("porosity"), "{:.3f}")]
+    interior = run.optional("porosity_grid_interior")
+    if interior is not None and math.isfinite(interior):
+        rows.append(("porosity_grid_interior", "porosity, the same grid one diameter inside "
+                     "the walls, base and top", interior, p.get("porosity"), "{:.3f}"))
     if run.has("porosity/sphere_porosity") and len(run.data("porosity/sphere_porosity")):
         rows.append(("porosity_spheres", "porosity, measurement spheres on the column axis "
                      "(mean)", float(run.data("porosity/sphere_porosity").mean()),

@@ -30,6 +30,9 @@ KM = 1e-3
 # Key quantities: (compare.py key, label, format).
 KEY_ROWS = (
     ("porosity_grid", "porosity, 5 mm grid under the sleeper", "{:.3f}"),
+    ("porosity_grid_interior", "the same grid one diameter inside walls, base and top",
+     "{:.3f}"),
+    ("porosity_spheres", "porosity, measurement spheres on the column's axis", "{:.3f}"),
     ("contacts_before_sleeper_bodies", "particles bearing the sleeper, preload", "{:.1f}"),
     ("contacts_peak_sleeper_bodies", "particles bearing the sleeper, 40 kN", "{:.1f}"),
     ("contacts_peak_max_force_N", "largest contact force at 40 kN (N)", "{:,.0f}"),
@@ -139,9 +142,16 @@ def goals(groups):
         sample = paper_sample(g.runs[0])
         if sample in PAPER_POROSITY:
             s = stat(g, "porosity_grid")
+            inner = stat(g, "porosity_grid_interior")
             p = PAPER_POROSITY[sample]
-            rows.append((f"{g.name}: porosity within ±0.03 of {p}", interval(s, "{:.3f}"),
-                         "yes" if abs(s.mean - p) <= 0.03 else "no"))
+            within = abs(s.mean - p) <= 0.03
+            measured = interval(s, "{:.3f}")
+            if inner.mean is not None:
+                # The paper does not say whether its column kept the layers the walls
+                # loosen: the goal is judged on the whole column, the other shown beside.
+                measured += f"; one diameter inside the walls {interval(inner, '{:.3f}')}"
+            rows.append((f"{g.name}: porosity within ±0.03 of {p}", measured,
+                         "yes" if within else "no"))
         ends = [seating(x) for x in g.runs]
         rows.append((f"{g.name}: at rest under the preload (seating ended by equilibrium)",
                      ", ".join(f"{e} ({u:.4f})" if u is not None else e for e, u in ends),

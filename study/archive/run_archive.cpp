@@ -126,6 +126,7 @@ void write_box_test_result(hid_t run, const BoxTestResult& r) {
   number_attribute(run, "wall_seconds", r.wall_seconds);
   number_attribute(run, "loaded", static_cast<long>(r.loaded));
   number_attribute(run, "porosity_grid", r.porosity_grid);
+  number_attribute(run, "porosity_grid_interior", r.porosity_grid_interior);
   number_attribute(run, "bed_height", r.bed_height);
   number_attribute(run, "settlement_peak", r.settlement_peak);
   number_attribute(run, "permanent_settlement", r.permanent_settlement);

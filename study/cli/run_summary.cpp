@@ -44,6 +44,7 @@ nlohmann::json run_summary_json(const BoxTestResult& r) {
                       {"wall_seconds", r.wall_seconds},
                       {"loaded", r.loaded},
                       {"porosity_grid", r.porosity_grid},
+                      {"porosity_grid_interior", r.porosity_grid_interior},
                       {"porosity_spheres", r.porosity_spheres},
                       {"bed_height_m", r.bed_height},
                       {"contacts_before", contacts_json(r.before)},
@@ -73,7 +74,8 @@ void print_run_summary(std::ostream& out, const BoxTestResult& r) {
   out << "\n"
       << r.scene_name << ": " << r.bodies << " bodies, " << r.balls << " balls, dt " << r.dt
       << " s (critical " << r.dt_critical << " s), " << r.wall_seconds << " s wall\n";
-  out << "porosity under the sleeper (5 mm grid): " << r.porosity_grid << "\n";
+  out << "porosity under the sleeper (5 mm grid): " << r.porosity_grid
+      << "; one diameter inside the walls, base and top: " << r.porosity_grid_interior << "\n";
   std::snprintf(line, sizeof line, "%-16s %9s %9s %6s %10s %10s\n", "contacts", "ball-ball",
                 "ball-wall", "Z", "max F (N)", "mean F (N)");
   out << line;

@@ -117,6 +117,11 @@ class RunCommand(unittest.TestCase):
                 # A packed granular bed: between very dense and very loose.
                 self.assertGreater(s["porosity_grid"], 0.3)
                 self.assertLess(s["porosity_grid"], 0.5)
+                # A flat wall loosens the layer against it (spheres: about 0.47 within
+                # a radius of it, against 0.36-0.40 inside), so the column without
+                # the wall layers is denser than the whole column.
+                self.assertLess(s["porosity_grid_interior"], s["porosity_grid"] - 0.01)
+                self.assertGreater(s["porosity_grid_interior"], 0.25)
                 self.assertTrue(s["loaded"])
                 # The servo follows the 0.75 -> 10 -> 0.75 kN pulse. It is a
                 # proportional servo, so it lags by the speed the bed gives way at:
