@@ -58,13 +58,13 @@ void state_fields(Io& io, ClumpSampleRecord& c) {
 template <class Io>
 void state_fields(Io& io, BoxTestResult& r) {
   io(r.scene_name, r.stages, r.bodies, r.balls, r.dt, r.dt_critical, r.wall_seconds, r.loaded,
-     r.porosity_grid, r.porosity_grid_interior, r.sphere_heights, r.porosity_spheres, r.bed_height, r.before, r.at_peak,
-     r.after, r.near_before, r.zones, r.rotation_loading, r.rotation_unloading, r.rotation_cycle,
-     r.max_displacement_peak, r.max_displacement_after, r.settlement_peak, r.permanent_settlement,
-     r.resilient_settlement, r.max_force_error, r.rms_force_error, r.time, r.target_force,
-     r.sleeper_force, r.settlement, r.cycles, r.position_start, r.position_peak, r.position_end,
-     r.rotation_deg_loading, r.rotation_deg_unloading, r.rotation_deg_cycle, r.shape_index,
-     r.clumps, r.energy);
+     r.porosity_grid, r.porosity_grid_interior, r.sphere_heights, r.porosity_spheres, r.bed_height,
+     r.before, r.at_peak, r.after, r.near_before, r.zones, r.rotation_loading, r.rotation_unloading,
+     r.rotation_cycle, r.max_displacement_peak, r.max_displacement_after, r.settlement_peak,
+     r.permanent_settlement, r.resilient_settlement, r.max_force_error, r.rms_force_error, r.time,
+     r.target_force, r.sleeper_force, r.settlement, r.cycles, r.position_start, r.position_peak,
+     r.position_end, r.rotation_deg_loading, r.rotation_deg_unloading, r.rotation_deg_cycle,
+     r.shape_index, r.clumps, r.energy);
 }
 
 namespace {

@@ -83,9 +83,9 @@ void measure_porosity(const BoxTestScene& s, const Simulation& sim, double x0, d
   const double d = s.diameter;
   out.porosity_grid_interior = std::numeric_limits<double>::quiet_NaN();
   if (s.width - 2.0 * d >= s.cube_side && bottom - 2.0 * d >= s.cube_side)
-    out.porosity_grid_interior = grid_porosity(sim.balls(), Vec3(x0, d, d),
-                                               Vec3(x1, s.width - d, bottom - d), s.cube_side)
-                                     .porosity;
+    out.porosity_grid_interior =
+        grid_porosity(sim.balls(), Vec3(x0, d, d), Vec3(x1, s.width - d, bottom - d), s.cube_side)
+            .porosity;
   // Measurement spheres count the overlaps inside a clump twice: spheres only
   // (decided by the bodies, so that an imported packing is judged by what it holds).
   const auto& is_sphere = sim.bodies().is_sphere;
