@@ -95,6 +95,8 @@ constexpr StudyKey kOtherKeys[] = {
     number("levelling_pressure", closed(0, 1e6), "loading",
            "Pa, the levelling plate on the bed's top through compaction; 0: a free top"),
     number("gravity_factor", closed(1, 1000), "loading", "enhanced gravity while compacting, x g"),
+    number("preload", above(0), "loading",
+           "N, the sleeper's preload, where the load cycle starts and ends (the paper's 3 kN)"),
     integer("cycles", at_least(1), "loading", "load cycles of the sleeper"),
     number("frequency", above(0), "loading",
            "Hz, the sleeper's load cycle (the paper's 3; the scene asks for 20 timesteps a "

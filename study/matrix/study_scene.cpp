@@ -35,6 +35,7 @@ constexpr SceneKey kOtherSceneKeys[] = {
     {"count", "/particles/count"},
     {"levelling_pressure", "/preparation/levelling_pressure"},
     {"gravity_factor", "/preparation/gravity_factor"},
+    {"preload", "/sleeper/preload"},
     {"cycles", "/sleeper/cycles"},
     {"frequency", "/sleeper/frequency"},
 };
