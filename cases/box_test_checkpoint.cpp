@@ -110,21 +110,38 @@ void write_atomically(const std::string& path, const std::string& bytes) {
 
 }  // namespace
 
-void write_checkpoint(const CheckpointPlan& plan, const Simulation& sim,
-                      const BoxTestResult& result, const CycleLoop& loop,
-                      const std::vector<ClumpTemplate>& templates) {
+namespace {
+
+void write_state(const CheckpointPlan& plan, const Simulation& sim, const PrepPoint& point,
+                 const std::vector<StageReport>& stages, double dt_spheres,
+                 const BoxTestResult& result, const CycleLoop& loop,
+                 const std::vector<ClumpTemplate>& templates) {
   std::ostringstream out;
   StateWriter w(out);
   std::string magic = kMagic, build = plan.build_id, scene = plan.scene_text;
   std::string log = plan.log_text ? plan.log_text() : std::string();
-  w(magic, build, scene, result, loop, templates, log);
+  w(magic, build, scene, point, stages, dt_spheres, result, loop, templates, log);
   sim.save_state(w);
   const std::uint64_t hash = w.hash();
   out.write(reinterpret_cast<const char*>(&hash), sizeof hash);
   write_atomically(plan.path, out.str());
 }
 
-LoadCheckpoint read_checkpoint(const CheckpointPlan& plan, Simulation& sim) {
+}  // namespace
+
+void write_checkpoint(const CheckpointPlan& plan, const Simulation& sim,
+                      const BoxTestResult& result, const CycleLoop& loop,
+                      const std::vector<ClumpTemplate>& templates) {
+  write_state(plan, sim, PrepPoint{}, {}, 0.0, result, loop, templates);
+}
+
+void write_preparation_checkpoint(const CheckpointPlan& plan, const PreparedBed& bed,
+                                  const PrepPoint& point) {
+  write_state(plan, bed.sim, point, bed.stages, bed.dt_spheres, BoxTestResult{}, CycleLoop{},
+              bed.templates);
+}
+
+RunCheckpoint read_checkpoint(const CheckpointPlan& plan, Simulation& sim) {
   const std::string what = "checkpoint " + plan.path;
   std::ifstream in(plan.path, std::ios::binary);
   if (!in) throw SetupError("cannot read " + what + ": " + cause());
@@ -142,8 +159,8 @@ LoadCheckpoint read_checkpoint(const CheckpointPlan& plan, Simulation& sim) {
     throw SetupError(what +
                      " was written for another scene than this run's (delete it to "
                      "start the run again, or run the scene it was written for)");
-  LoadCheckpoint c;
-  r(c.result, c.loop, c.templates, c.log);
+  RunCheckpoint c;
+  r(c.point, c.stages, c.dt_spheres, c.result, c.loop, c.templates, c.log);
   sim.load_state(r);
   const std::uint64_t expected = r.hash();
   std::uint64_t stored = 0;

@@ -4,18 +4,20 @@
 // A checkpoint holds everything the rest of the run reads: the engine's state
 // (Simulation::save_state), the result measured so far, the load loop's own state
 // (CycleLoop) and the clump templates the archive will describe. It is written at
-// the start of loading (the preparation is never redone), after every K-th cycle and
-// every M minutes of wall time, each time to a temporary file that is synced and then
-// renamed over the last one: a kill at any moment leaves the previous checkpoint or
-// the new one, whole. The file ends with an FNV-1a hash of its content, and its head
-// names the build and the scene: a damaged checkpoint, or one that another build or
-// another scene wrote, is refused with a message that says so, never half read.
+// every point between two stages of the preparation (PrepStage: there it holds the
+// bed's stages instead of a result and a loop), at the start of loading, after every
+// K-th cycle and every M minutes of wall time, each time to a temporary file that is synced and
+// then renamed over the last one: a kill at any moment leaves the previous checkpoint or the new
+// one, whole. The file ends with an FNV-1a hash of its content, and its head names the build and
+// the scene: a damaged checkpoint, or one that another build or another scene wrote, is refused
+// with a message that says so, never half read.
 #pragma once
 
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "cases/box_test_prepare.hpp"
 #include "cases/box_test_result.hpp"
 #include "cases/cycle_recorder.hpp"
 #include "engine/simulation.hpp"
@@ -57,22 +59,33 @@ struct CycleLoop {
   }
 };
 
-// What a checkpoint restores besides the simulation.
-struct LoadCheckpoint {
-  BoxTestResult result;  // measured so far
+// What a checkpoint restores besides the simulation: a point of the preparation
+// (point.done > kNone: the bed's stages and dt_spheres, the templates, the log), or
+// the load cycles (point.done == kNone: the result so far, the loop, the templates,
+// the log).
+struct RunCheckpoint {
+  PrepPoint point;
+  std::vector<StageReport> stages;  // the preparation's, at a point of it
+  double dt_spheres = 0.0;          // s, likewise
+  BoxTestResult result;             // measured so far, in the load cycles
   CycleLoop loop;
   std::vector<ClumpTemplate> templates;  // the clump sample's (empty for spheres)
   std::string log;                       // the run's log so far (plan.log_text)
 };
 
-// Writes plan.path atomically. Throws std::runtime_error naming the path and the
-// cause when the file system refuses (the load loop reports it and goes on).
+// Writes plan.path atomically, in the load cycles. Throws std::runtime_error naming
+// the path and the cause when the file system refuses (the load loop reports it and
+// goes on).
 void write_checkpoint(const CheckpointPlan& plan, const Simulation& sim,
                       const BoxTestResult& result, const CycleLoop& loop,
                       const std::vector<ClumpTemplate>& templates);
 
+// The same at a point of the preparation (`point.done` > kNone).
+void write_preparation_checkpoint(const CheckpointPlan& plan, const PreparedBed& bed,
+                                  const PrepPoint& point);
+
 // Reads plan.path into `sim` (whose log stream it keeps) and returns the rest; throws
 // SetupError for a file that is damaged, truncated, or of another build or scene.
-LoadCheckpoint read_checkpoint(const CheckpointPlan& plan, Simulation& sim);
+RunCheckpoint read_checkpoint(const CheckpointPlan& plan, Simulation& sim);
 
 }  // namespace ballast

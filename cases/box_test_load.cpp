@@ -271,38 +271,67 @@ BoxTestResult run_box_test(const BoxTestScene& s, std::ostream* log,
   const bool resuming = plan.resume && !plan.path.empty() && std::filesystem::exists(plan.path);
   SimulationSettings quiet;
   quiet.log = log;
-  PreparedBed bed =
-      resuming ? PreparedBed{Simulation(quiet), {}, 0.0, {}} : prepare_box_test(s, log);
+  PreparedBed bed{Simulation(quiet), {}, 0.0, {}};
   BoxTestResult out;
   Simulation& sim = bed.sim;
   double before = 0.0;  // wall seconds the run took before its last checkpoint
+  // A checkpoint at every point between two preparation stages: insurance, not a
+  // result, so one the file system refuses is reported and the run goes on.
+  PrepCheckpoint at_point;
+  if (!plan.path.empty())
+    at_point = [&](const PreparedBed& b, const PrepPoint& p) {
+      PrepPoint now = p;
+      now.run_seconds = before + seconds_since(start);
+      try {
+        write_preparation_checkpoint(plan, b, now);
+      } catch (const std::runtime_error& e) {
+        if (log) *log << "warning: " << e.what() << "; the run goes on without it\n";
+      }
+    };
+  bool loading_resumed = false;
   if (resuming) {
-    LoadCheckpoint c = read_checkpoint(plan, sim);
-    out = std::move(c.result);
+    RunCheckpoint c = read_checkpoint(plan, sim);
     bed.templates = std::move(c.templates);
-    before = c.loop.run_seconds;
-    sim.set_servo_target(c.loop.servo,
-                         sinusoidal_load(s.preload, s.peak_load, s.frequency, c.loop.t0));
-    if (log)
-      *log << c.log << "resumed from checkpoint " << plan.path << ": step " << sim.step_count()
-           << ", " << c.loop.cycles.cycles_done() << " of " << s.cycles << " cycles done\n";
-    run_cycles(s, sim, out, c.loop, log, plan, bed.templates, start, true);
-  } else if (s.stop_after.empty()) {
-    out.scene_name = s.name;
-    out.stages = bed.stages;
-    CycleLoop loop = seat_sleeper(s, sim, out, log);
-    run_cycles(s, sim, out, loop, log, plan, bed.templates, start, false);
+    if (c.point.done != PrepStage::kNone) {
+      bed.stages = std::move(c.stages);
+      bed.dt_spheres = c.dt_spheres;
+      before = c.point.run_seconds;
+      if (log)
+        *log << c.log << "resumed from checkpoint " << plan.path << ": step " << sim.step_count()
+             << ", in the preparation after its stage '"
+             << (bed.stages.empty() ? std::string("import") : bed.stages.back().name) << "'\n";
+      continue_box_test_preparation(s, bed, c.point, log, at_point);
+    } else {
+      loading_resumed = true;
+      out = std::move(c.result);
+      before = c.loop.run_seconds;
+      sim.set_servo_target(c.loop.servo,
+                           sinusoidal_load(s.preload, s.peak_load, s.frequency, c.loop.t0));
+      if (log)
+        *log << c.log << "resumed from checkpoint " << plan.path << ": step " << sim.step_count()
+             << ", " << c.loop.cycles.cycles_done() << " of " << s.cycles << " cycles done\n";
+      run_cycles(s, sim, out, c.loop, log, plan, bed.templates, start, true);
+    }
   } else {
+    bed = prepare_box_test(s, log, at_point);
+  }
+  if (!loading_resumed) {
     out.scene_name = s.name;
     out.stages = bed.stages;
-    const double x0 = 0.5 * (s.length - s.sleeper_length);
-    measure_porosity(s, sim, x0, x0 + s.sleeper_length, bed_top(sim, x0, x0 + s.sleeper_length),
-                     out);
-    out.before = snapshot_contacts(sim);
-    out.position_start = out.position_end = sim.bodies().position;
-    out.rotation_deg_cycle =
-        angles(sim.bodies().rotation, std::vector<Vec3>(sim.bodies().size(), Vec3::Zero()));
-    out.rotation_cycle = stats_of(out.rotation_deg_cycle);
+    if (s.stop_after.empty()) {
+      CycleLoop loop = seat_sleeper(s, sim, out, log);
+      loop.run_seconds = before;
+      run_cycles(s, sim, out, loop, log, plan, bed.templates, start, false);
+    } else {
+      const double x0 = 0.5 * (s.length - s.sleeper_length);
+      measure_porosity(s, sim, x0, x0 + s.sleeper_length, bed_top(sim, x0, x0 + s.sleeper_length),
+                       out);
+      out.before = snapshot_contacts(sim);
+      out.position_start = out.position_end = sim.bodies().position;
+      out.rotation_deg_cycle =
+          angles(sim.bodies().rotation, std::vector<Vec3>(sim.bodies().size(), Vec3::Zero()));
+      out.rotation_cycle = stats_of(out.rotation_deg_cycle);
+    }
   }
   out.bodies = sim.bodies().size();
   out.balls = sim.balls().size();

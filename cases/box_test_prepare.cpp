@@ -72,12 +72,16 @@ Index lid_of(const Simulation& sim) {
 // than the sleeper's 0.5 m/s would follow (a Sample 1 bed fell 100 mm in 0.17 s).
 constexpr double kPlateSpeed = 1.0;  // m/s
 
+std::function<double(double)> plate_target(const BoxTestScene& s) {
+  const double force = s.levelling_pressure * s.length * s.width;
+  return [force](double) { return force; };
+}
+
 Index press_lid(Simulation& sim, const BoxTestScene& s) {
   Servo plate;
   plate.walls = {lid_of(sim)};
   plate.axis = -Vec3::UnitZ();
-  const double force = s.levelling_pressure * s.length * s.width;
-  plate.target_force = [force](double) { return force; };
+  plate.target_force = plate_target(s);
   plate.gain = s.sleeper_gain;
   plate.max_speed = kPlateSpeed;
   return sim.add_servo(plate);
@@ -387,65 +391,92 @@ PreparedBed import_sample(const BoxTestScene& s, std::ostream* log) {
 
 }  // namespace
 
-PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log) {
+void continue_box_test_preparation(const BoxTestScene& s, PreparedBed& out, PrepPoint at,
+                                   std::ostream* log, const PrepCheckpoint& at_point) {
+  Simulation& sim = out.sim;
+  // A servo's target is a function, which a checkpoint cannot hold: the plate's again.
+  if (at.plate) sim.set_servo_target(at.plate_servo, plate_target(s));
+  const auto reached = [&](PrepStage stage) {
+    at.done = stage;
+    if (at_point) at_point(out, at);
+  };
+  const auto due = [&](PrepStage stage) { return at.done < stage; };
+  // A plate that never reached the bed (an imported packing stopped before any step)
+  // is put away without a stage: nothing bears on it, and the bed stays as it came.
+  const auto lift = [&] {
+    if (!at.plate) return;
+    if (lid_touches(sim)) {
+      out.stages.push_back(lift_plate(sim, at.plate_servo, s, log));
+      return;
+    }
+    sim.release_servo(at.plate_servo);
+    sim.move_wall(lid_of(sim), Vec3(0, 0, s.height));
+  };
+  if (due(PrepStage::kSettled)) {
+    if (s.frictionless_settling) {
+      // The sample settles into its dense state still frictionless, as a radius-
+      // expansion sample is meant to reach its porosity before loading starts; under
+      // the compaction gravity with contact dashpots. Local damping would hold a
+      // frictionless bed almost still: at α = 0.7 the full-scale bed's porosity went
+      // from 0.49 to 0.47 in 0.45 s, against 0.49 to 0.41 in 0.19 s with dashpots.
+      sim.set_local_damping(0.0);
+      sim.set_damping_ratio(kSettleDampingRatio);
+      sim.set_gravity(Vec3(0, 0, s.gravity(s.gravity_factor)));
+      out.stages.push_back(
+          settle(sim, "settle", s.equilibrium_ratio, s.max_stage_steps, log, SettleRule::kKinetic));
+      sim.set_damping_ratio(0.0);
+      sim.set_local_damping(s.sim.local_damping);
+    }
+    sim.set_all_friction(s.friction_compaction);
+    reached(PrepStage::kSettled);
+  }
+  if (s.stop_after == "prepare") {
+    lift();
+    return;
+  }
+
+  // Stage 3: compaction.
+  if (due(PrepStage::kCompacted)) {
+    if (log) *log << "stage 3: compaction at " << s.gravity_factor << " g, then 1 g\n";
+    sim.set_gravity(Vec3(0, 0, s.gravity(s.gravity_factor)));
+    if (at.plate) lower_plate(sim, s);
+    out.stages.push_back(settle(sim, "compact", s.equilibrium_ratio, s.max_stage_steps, log));
+    reached(PrepStage::kCompacted);
+  }
+  if (due(PrepStage::kAtOneG)) {
+    sim.set_gravity(Vec3(0, 0, s.gravity(1.0)));
+    out.stages.push_back(settle(sim, "1 g", s.equilibrium_ratio, s.max_stage_steps, log));
+    reached(PrepStage::kAtOneG);
+  }
+  if (due(PrepStage::kFrictionRaised)) {
+    sim.set_all_friction(s.friction_loading);
+    out.stages.push_back(settle(sim, "mu=" + std::to_string(s.friction_loading).substr(0, 4),
+                                s.equilibrium_ratio, s.max_stage_steps, log));
+    reached(PrepStage::kFrictionRaised);
+  }
+  if (!at.plate) return;
+  lift();
+  // The top rebounds a little from the plate's pressure: settle again.
+  out.stages.push_back(settle(sim, "plate off", s.equilibrium_ratio, s.max_stage_steps, log));
+}
+
+PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log,
+                             const PrepCheckpoint& at_point) {
   PreparedBed out = s.packing_file.empty() ? generate_sample(s, log) : import_sample(s, log);
   // The lid: a levelling plate through compaction, or lifted off now.
-  std::optional<Index> plate;
+  PrepPoint at;
   if (s.levelling_pressure > 0.0) {
-    plate = press_lid(out.sim, s);
+    at.plate = true;
+    at.plate_servo = press_lid(out.sim, s);
     if (log)
       *log << "levelling plate on the bed's top at " << s.levelling_pressure * 1e-3
            << " kPa through compaction\n";
   } else {
     out.sim.move_wall(lid_of(out.sim), Vec3(0, 0, s.height));
   }
-  // A plate that never reached the bed (an imported packing stopped before any step)
-  // is put away without a stage: nothing bears on it, and the bed stays as it came.
-  const auto lift = [&] {
-    if (!plate) return;
-    if (lid_touches(out.sim)) {
-      out.stages.push_back(lift_plate(out.sim, *plate, s, log));
-      return;
-    }
-    out.sim.release_servo(*plate);
-    out.sim.move_wall(lid_of(out.sim), Vec3(0, 0, s.height));
-  };
-  if (s.frictionless_settling) {
-    // The sample settles into its dense state still frictionless, as a radius-
-    // expansion sample is meant to reach its porosity before loading starts; under
-    // the compaction gravity with contact dashpots. Local damping would hold a
-    // frictionless bed almost still: at α = 0.7 the full-scale bed's porosity went
-    // from 0.49 to 0.47 in 0.45 s, against 0.49 to 0.41 in 0.19 s with dashpots.
-    Simulation& sim = out.sim;
-    sim.set_local_damping(0.0);
-    sim.set_damping_ratio(kSettleDampingRatio);
-    sim.set_gravity(Vec3(0, 0, s.gravity(s.gravity_factor)));
-    out.stages.push_back(
-        settle(sim, "settle", s.equilibrium_ratio, s.max_stage_steps, log, SettleRule::kKinetic));
-    sim.set_damping_ratio(0.0);
-    sim.set_local_damping(s.sim.local_damping);
-  }
-  out.sim.set_all_friction(s.friction_compaction);
-  if (s.stop_after == "prepare") {
-    lift();
-    return out;
-  }
-
-  // Stage 3: compaction.
-  Simulation& sim = out.sim;
-  if (log) *log << "stage 3: compaction at " << s.gravity_factor << " g, then 1 g\n";
-  sim.set_gravity(Vec3(0, 0, s.gravity(s.gravity_factor)));
-  if (plate) lower_plate(sim, s);
-  out.stages.push_back(settle(sim, "compact", s.equilibrium_ratio, s.max_stage_steps, log));
-  sim.set_gravity(Vec3(0, 0, s.gravity(1.0)));
-  out.stages.push_back(settle(sim, "1 g", s.equilibrium_ratio, s.max_stage_steps, log));
-  sim.set_all_friction(s.friction_loading);
-  out.stages.push_back(settle(sim, "mu=" + std::to_string(s.friction_loading).substr(0, 4),
-                              s.equilibrium_ratio, s.max_stage_steps, log));
-  if (!plate) return out;
-  lift();
-  // The top rebounds a little from the plate's pressure: settle again.
-  out.stages.push_back(settle(sim, "plate off", s.equilibrium_ratio, s.max_stage_steps, log));
+  at.done = PrepStage::kGenerated;
+  if (at_point) at_point(out, at);
+  continue_box_test_preparation(s, out, at, log, at_point);
   return out;
 }
 

@@ -60,9 +60,43 @@ struct PreparedBed {
   std::vector<ClumpTemplate> templates;
 };
 
+// The points between two stages of the preparation, where a checkpoint is written and
+// a killed run resumes (box_test_checkpoint.hpp): a preparation of Sample 2 at full
+// scale takes half an hour of one core, and a kill in it lost all of it.
+enum class PrepStage : int {
+  kNone = 0,       // not in the preparation (a checkpoint of the load cycles)
+  kGenerated,      // stages 1-2 done (or the packing imported), the plate on or the lid away
+  kSettled,        // the frictionless settling done, the compaction friction set
+  kCompacted,      // compaction under the enhanced gravity done
+  kAtOneG,         // settled again at 9.81 m/s²
+  kFrictionRaised  // settled again with the loading friction
+};
+
+// Where a preparation stands at such a point, besides the bed (PreparedBed).
+struct PrepPoint {
+  PrepStage done = PrepStage::kNone;
+  bool plate = false;        // the levelling plate is on the bed's top,
+  Index plate_servo = 0;     // pressed by this servo
+  double run_seconds = 0.0;  // wall seconds the run had taken when it got here
+
+  template <class Io>
+  void state_fields(Io& io) {
+    io(done, plate, plate_servo, run_seconds);
+  }
+};
+
+// Called at each point with the bed as it stands there (writes a checkpoint).
+using PrepCheckpoint = std::function<void(const PreparedBed&, const PrepPoint&)>;
+
 // Runs stages 1-3 (or fewer: scene.stop_after; 3 only for an imported packing). Progress lines go
-// to `log` (nullptr: silent).
-PreparedBed prepare_box_test(const BoxTestScene& scene, std::ostream* log);
+// to `log` (nullptr: silent); `at_point`, when given, is called at every PrepStage.
+PreparedBed prepare_box_test(const BoxTestScene& scene, std::ostream* log,
+                             const PrepCheckpoint& at_point = {});
+
+// The rest of the preparation for a bed restored where a checkpoint left it (`from`,
+// done > kNone): the same steps, to the bit, as if it had never stopped.
+void continue_box_test_preparation(const BoxTestScene& scene, PreparedBed& bed, PrepPoint from,
+                                   std::ostream* log, const PrepCheckpoint& at_point = {});
 
 enum class SettleRule {
   kRatio,    // unbalanced-force ratio below `ratio`, with contacts

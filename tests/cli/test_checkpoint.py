@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""Checkpoints of the load cycles (cases/box_test_checkpoint.hpp): a run killed with
-SIGKILL at several moments and resumed each time ends with the same archive, bit for
-bit, as a run never interrupted; so does a study whose run in flight is killed; and a
+"""Checkpoints of the preparation and the load cycles (cases/box_test_checkpoint.hpp):
+a run killed with SIGKILL at several moments, in the preparation or the cycles, and
+resumed each time ends with the same archive, bit for bit, as a run never interrupted;
+so does a study whose run in flight is killed; and a
 checkpoint that is damaged, truncated, of another scene, or left over from a killed
 run is refused with a message that says so.
 
@@ -38,16 +39,20 @@ def run_differences_single(a_path, b_path):
         return differences(a["run"], b["run"], "/run")
 
 
-def kill_after(cmd, checkpoint, delay):
-    """Starts `cmd`, waits for `checkpoint` to be (re)written, waits `delay` s more, and
-    kills it with SIGKILL. Returns whether it was still running to be killed."""
+def kill_after(cmd, checkpoint, delay, writes=1):
+    """Starts `cmd`, waits for `checkpoint` to be (re)written `writes` times (as often as
+    polling sees it change: at least that many), waits `delay` s more, and kills it with
+    SIGKILL. Returns whether it was still running to be killed."""
     before = os.stat(checkpoint).st_mtime_ns if os.path.exists(checkpoint) else None
     p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     deadline = time.monotonic() + 300
-    while time.monotonic() < deadline and p.poll() is None:
-        if os.path.exists(checkpoint) and os.stat(checkpoint).st_mtime_ns != before:
-            break
-        time.sleep(0.02)
+    seen = 0
+    while time.monotonic() < deadline and p.poll() is None and seen < writes:
+        now = os.stat(checkpoint).st_mtime_ns if os.path.exists(checkpoint) else None
+        if now is not None and now != before:
+            seen, before = seen + 1, now
+            continue
+        time.sleep(0.005)
     time.sleep(delay)
     running = p.poll() is None
     if running:
@@ -74,10 +79,12 @@ class Checkpoints(unittest.TestCase):
         out = self.path("killed.h5")
         checkpoint = out + ".checkpoint"
         cmd = [binary.PATH, "run", TINY, *CYCLES, "--checkpoint-cycles", "1", "-o", out]
-        # A kill right after a checkpoint lands, one a little later, one later still
-        # (inside a cycle, while the next checkpoint may be being written).
-        kills = sum(kill_after(cmd + (["--resume"] if k else []), checkpoint, delay)
-                    for k, delay in enumerate((0.0, 0.15, 0.4)))
+        # A kill right after a checkpoint lands (the first, in the preparation), one a
+        # little later, one later still, after more checkpoints than the preparation
+        # and the start of loading write (6 for this scene): inside a cycle, while the
+        # next checkpoint may be being written.
+        kills = sum(kill_after(cmd + (["--resume"] if k else []), checkpoint, delay, writes)
+                    for k, (delay, writes) in enumerate(((0.0, 1), (0.15, 1), (0.1, 9))))
         self.assertGreaterEqual(kills, 2, "the runs ended before they could be killed")
         self.assertTrue(os.path.exists(checkpoint))
         self.assertFalse(os.path.exists(out))
@@ -87,6 +94,21 @@ class Checkpoints(unittest.TestCase):
         self.assertGreater(done[0], 0, "the last resume started from the start of loading")
         self.assertEqual(run_differences_single(out, self.reference), [])
         self.assertFalse(os.path.exists(checkpoint), "a finished run removes its checkpoint")
+
+    def test_killed_in_the_preparation_then_resumed_gives_the_same_archive(self):
+        # A checkpoint lands at every point between two stages of the preparation:
+        # killed just after the first, the run goes on from there, with the plate's
+        # servo pressing as before, not from a new preparation.
+        out = self.path("prepare.h5")
+        cmd = [binary.PATH, "run", TINY, *CYCLES, "-o", out]
+        self.assertTrue(kill_after(cmd, out + ".checkpoint", 0.0))
+        r = succeed("run", TINY, *CYCLES, "-o", out, "--resume")
+        resumed = re.search(r"resumed from checkpoint .*: step (\d+), in the preparation after "
+                            r"its stage '([^']+)'", r.stdout)
+        self.assertIsNotNone(resumed, r.stdout[-2000:])
+        self.assertGreater(int(resumed.group(1)), 0)
+        self.assertEqual(run_differences_single(out, self.reference), [])
+        self.assertFalse(os.path.exists(out + ".checkpoint"))
 
     def test_resumed_on_two_threads_gives_the_same_archive(self):
         out = self.path("two.h5")
