@@ -9,6 +9,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 
 #include "cases/box_test_load.hpp"
 #include "cases/packing_bodies.hpp"
@@ -104,7 +105,15 @@ void run(const RunOptions& o) {
   };
   const BoxTestResult r = run_box_test(scene, log, export_bed, plan);
   if (!o.output.empty()) {
-    write_run_file(o.output, j.dump(2), r);
+    try {
+      write_run_file(o.output, j.dump(2), r);
+    } catch (const std::runtime_error& e) {
+      // The last checkpoint that fitted holds the run up to where it was written.
+      if (!std::filesystem::exists(plan.path)) throw;
+      throw std::runtime_error(std::string(e.what()) + "; the run's last checkpoint, " + plan.path +
+                               ", is kept: with room again, the same command with --resume "
+                               "goes on from it");
+    }
     std::error_code ignored;  // a checkpoint left behind costs disk, not results
     std::filesystem::remove(plan.path, ignored);  // the run is safe in its file now
   }

@@ -21,7 +21,7 @@ import h5py
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import binary  # noqa: E402
-from archive_compare import run_differences  # noqa: E402
+from archive_compare import differences, run_differences  # noqa: E402
 from binary import ballast, succeed  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -98,16 +98,33 @@ class Faults(unittest.TestCase):
             with h5py.File(archive, "r") as f:
                 self.assertEqual(sorted(f["runs"]), sorted(IDS))
 
-    def test_a_run_that_cannot_write_its_output_says_why_and_leaves_nothing(self):
+    def test_a_run_that_cannot_write_its_output_says_why_and_resumes(self):
+        reference = os.path.join(self.tmp, "reference.h5")
+        succeed("run", self.scene, "-o", reference, "--threads", "1")
         with self.disk(40) as d:
             out = os.path.join(d.where, "r.h5")
-            r = ballast("run", self.scene, "-o", out, "--threads", "1")
+            args = ("run", self.scene, "-o", out, "--threads", "1")
+            r = ballast(*args)
             self.assert_clean_failure(r, 1, f"cannot write {out}: No space left on device")
-            # Its checkpoint at the start of loading did not fit either: said, and the
-            # run went on to the end (the output is what it could not write).
+            # The checkpoints that did not fit were said, and the run went on to the end
+            # (the output is what it could not write).
             self.assertIn(f"warning: cannot write checkpoint {out}.checkpoint.tmp: No space "
                           "left on device; the run goes on without it", r.stdout)
-            self.assertEqual(os.listdir(d.where), [])
+            # Left behind: nothing half written; at most the last checkpoint that fitted
+            # (one of the first, in the preparation), whole, named, with how to resume.
+            left = os.listdir(d.where)
+            self.assertIn(left, ([], ["r.h5.checkpoint"]))
+            if left:
+                self.assertIn(f"last checkpoint, {out}.checkpoint, is kept", r.stderr)
+                self.assertIn("--resume", r.stderr)
+            # Room again: --resume goes on from it (or starts again without one) and
+            # ends with the run an uninterrupted one gives, bit for bit.
+            d.grow(4000)
+            r = ballast(*args, "--resume")
+            self.assertEqual(r.returncode, 0, r.stdout[-2000:] + r.stderr)
+            with h5py.File(out, "r") as a, h5py.File(reference, "r") as b:
+                self.assertEqual(differences(a["run"], b["run"], "/run"), [])
+            self.assertEqual(os.listdir(d.where), ["r.h5"])
 
     def test_a_read_only_output_is_refused_before_anything_runs(self):
         with self.disk(1000, read_only=True) as d:
