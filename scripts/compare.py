@@ -10,9 +10,12 @@ numbers (paper_values.scale_shortfalls). Then one column per run (status ok), on
 per measured quantity; a cell reads "ours (paper)" where the paper gives a number for
 the run's sample: the spheres, Table 2 Sample 1 or Sample 2 (Sample 2 has only its
 porosity; a run that changes a preset's clump parameters is not the paper's sample and
-gets none). Contact counts are ball–ball plus ball–wall; the paper's Sample 1 count
-includes the overlaps inside clumps (16 per ball): "contacts counted both ways" lays
-out that arithmetic where the archive holds the near-contact counts.
+gets none). Contact counts are ball–ball plus ball–wall, each once; the paper counts
+differently (10.7 per sphere, 16 per Sample 1 ball, by a convention it does not give):
+"contacts counted both ways" lays out the arithmetic of the conventions that could
+reach its counts, where the archive holds the near-contact counts. Then, per loaded
+run, the three particles that turned most during loading, where they sat and what they
+did after (scripts/largest_rotations.py).
 
 Then the sample-level tables of scripts/compare_samples.py: replicates' means with 95 %
 intervals (when a sample has two runs or more), the spheres / clumps ratios, and the
@@ -31,6 +34,7 @@ import sys
 from ballast_archive import (ZONES, ArchiveError, add_run_arguments, chosen_runs,
                              open_archive)
 from compare_samples import sample_stats, samples_json, samples_markdown, span
+from largest_rotations import largest_rotations, largest_rotations_markdown
 from paper_values import (FULL_SCALE_SCENES, PHASES, STAGES, comparable, paper_sample,
                           paper_text, paper_values, scale_shortfalls)
 from replicates import group_runs, ordered_union
@@ -260,6 +264,9 @@ def run_json(run, rows):
              "not_at_paper_scale_because": scale_shortfalls(run),
              "quantities": {key: {"ours": ours, "paper": paper}
                             for key, _, ours, paper, _ in rows}}
+    turned = largest_rotations(run)
+    if turned:
+        entry["largest_rotations"] = turned
     both = counted_both_ways(run)
     if both:
         paper = paper_values(run).get("contacts", [(None,)])[0][0]
@@ -276,7 +283,8 @@ def report(path, runs, stats):
     parts = [f"Runs of {path} beside Lu & McDowell (2007): ours (paper). The paper's box: "
              "1,936 spheres or 1,770 clumps, 700 mm long, 40 kN.\n",
              "\n".join(scale_lines([s.group for s in stats])), "", markdown(runs)]
-    for extra in (counted_both_ways_markdown(runs), samples_markdown(stats)):
+    for extra in (counted_both_ways_markdown(runs), largest_rotations_markdown(runs),
+                  samples_markdown(stats)):
         if extra:
             parts += ["", extra]
     return "\n".join(parts)

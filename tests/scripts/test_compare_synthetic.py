@@ -171,6 +171,36 @@ class Compare(unittest.TestCase):
         out = self.compare(self.new)
         self.assertIn("| T2S1-r1 | 1 | 120 | 240 | 260 | 6,660 | — |", out)
 
+    def test_largest_rotations_name_the_particle_and_where_it_sat(self):
+        for path, has_zones in ((self.new, True), (self.old, False)):
+            table = self.compare(path, "--json")
+            with h5py.File(path, "r") as f:
+                for entry in table["runs"]:
+                    g = f["runs"][entry["id"]]
+                    scene = json.loads(g.attrs["scene_json"])
+                    loading = g["particles/rotation_loading"][()]
+                    start = g["particles/position_start"][()]
+                    rows = entry["largest_rotations"]
+                    self.assertEqual([r["body"] for r in rows],
+                                     sorted(range(len(loading)), key=lambda i: -loading[i])[:3])
+                    for r in rows:
+                        x, y, z = start[r["body"]]
+                        self.assertEqual(r["loading_deg"], loading[r["body"]])
+                        self.assertEqual(r["cycle_deg"], g["particles/rotation_cycle"][r["body"]])
+                        # Depth below the top, down positive; the nearer side wall.
+                        if has_zones:
+                            self.assertAlmostEqual(r["depth_mm"],
+                                                   (g["zones"].attrs["surface"] - z) * 1e3)
+                        else:
+                            self.assertIsNone(r["depth_mm"])
+                        width = scene["box"]["width"]
+                        self.assertAlmostEqual(r["wall_mm"], min(y, width - y) * 1e3)
+                        x0 = (scene["box"]["length"] - scene["sleeper"]["length"]) / 2
+                        self.assertEqual(r["beneath"],
+                                         bool(x0 <= x <= x0 + scene["sleeper"]["length"]))
+        self.assertIn("## The 3 largest rotations during loading, per run",
+                      self.compare(self.new))
+
     def test_full_scale_runs_sit_beside_the_paper(self):
         out = self.compare(self.full)
         self.assertNotIn("NOT comparable", out)
