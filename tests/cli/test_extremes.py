@@ -118,7 +118,7 @@ class Extremes(unittest.TestCase):
         self.assertIn("<= 9.5", r.stderr)
 
     def test_nearly_coincident_clump_balls_run_or_blow_up_naming_the_step(self):
-        # D3 = 0.01: every clump's balls nearly coincide and their contacts stack.
+        # D3 = 0.01: every clump's balls nearly coincide with its central ball.
         # At 0.8 of the critical estimate some realisations blow up in preparation
         # (seeds 2 and 4 of 1-6), the others run with a closed budget (docs/ACCURACY.md,
         # "Where each knob breaks"): either ending is allowed, nothing else.
