@@ -103,7 +103,17 @@ void run(const RunOptions& o) {
                        "ballast run " + o.scene + " (scene '" + scene.name + "'), after " + after);
     *log << "packing written to " << o.export_packing << "\n";
   };
-  const BoxTestResult r = run_box_test(scene, log, export_bed, plan);
+  const BoxTestResult r = [&] {
+    try {
+      return run_box_test(scene, log, export_bed, plan);
+    } catch (const SimulationError&) {
+      // A blow-up is the run's answer, not an interruption: resumed, the run would meet
+      // it again, so its checkpoint would only stand in the way of the next run.
+      std::error_code ignored;
+      std::filesystem::remove(plan.path, ignored);
+      throw;
+    }
+  }();
   if (!o.output.empty()) {
     try {
       write_run_file(o.output, j.dump(2), r);
