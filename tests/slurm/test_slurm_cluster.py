@@ -191,11 +191,17 @@ def run_on_the_cluster():
     wait_for("each shard to finish its first run", interrupt_each_in_its_second_run)
 
     # Slurm makes a requeued job wait about two minutes before it may start again
-    # (its EligibleTime). Nothing is being tested by that wait: once the task is back
-    # to PENDING, let it start now.
-    wait_for(f"{tasks[1]} to be pending again after the requeue",
-             lambda: job(tasks[1]).get("JobState") == "PENDING")
-    command("scontrol", "update", f"JobId={tasks[1]}", "StartTime=now")
+    # (its EligibleTime). Nothing is being tested by that wait, but the task may not
+    # start within the second its first start was killed in: slurmd revoked that
+    # start's credential then and refuses every credential of the job created no
+    # later, in whole seconds (slurm_cred.c), which fails the task (FAILED 1:0,
+    # nothing logged). slurmd revokes before it signals, so once the log shows the
+    # SIGTERM, a start two seconds on is safe.
+    wait_for(f"{tasks[1]} to be pending again after the requeue, its first start "
+             "interrupted",
+             lambda: job(tasks[1]).get("JobState") == "PENDING"
+             and "interrupted (SIGTERM)" in shard_log(1))
+    command("scontrol", "update", f"JobId={tasks[1]}", "StartTime=now+2")
     first_merge = wait_until_ended(merge)
     first = {"tasks": {k: job(t) for k, t in tasks.items()}, "merge": first_merge,
              "merge_log": read("merge.log"),
