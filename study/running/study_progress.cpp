@@ -112,7 +112,12 @@ void ProgressBoard::log_line(const RunSpec& run, const std::string& line) {
 void ProgressBoard::finished(const RunRecord& r) {
   std::lock_guard<std::mutex> lock(mutex_);
   const auto it = active_.find(r.spec.id);
-  const double seconds = it != active_.end() ? seconds_since(it->second.start) : r.wall_seconds;
+  // A finished box test knows its own time, including what it ran before a resume
+  // (kept in its checkpoint); this board saw only the part since. The whole is what a
+  // run costs, and what the ETA needs.
+  const double seconds = r.ok && r.result      ? r.result->wall_seconds
+                         : it != active_.end() ? seconds_since(it->second.start)
+                                               : r.wall_seconds;
   if (it != active_.end()) active_.erase(it);
   ++finished_;
   failed_ += r.ok ? 0 : 1;
