@@ -14,8 +14,8 @@ gets none). Contact counts are ball–ball plus ball–wall, each once; the pape
 differently (10.7 per sphere, 16 per Sample 1 ball, by a convention it does not give):
 "contacts counted both ways" lays out the arithmetic of the conventions that could
 reach its counts, where the archive holds the near-contact counts. Then, per loaded
-run, the three particles that turned most during loading, where they sat and what they
-did after (scripts/largest_rotations.py).
+run, the three particles that turned most during loading and the three that turned most
+over the cycle, where they sat and what they did after (scripts/largest_rotations.py).
 
 Then the sample-level tables of scripts/compare_samples.py: replicates' means with 95 %
 intervals (when a sample has two runs or more), the spheres / clumps ratios, and the
@@ -267,6 +267,7 @@ def run_json(run, rows):
     turned = largest_rotations(run)
     if turned:
         entry["largest_rotations"] = turned
+        entry["largest_cycle_rotations"] = largest_rotations(run, by="cycle")
     both = counted_both_ways(run)
     if both:
         paper = paper_values(run).get("contacts", [(None,)])[0][0]

@@ -180,10 +180,15 @@ class Compare(unittest.TestCase):
                     scene = json.loads(g.attrs["scene_json"])
                     loading = g["particles/rotation_loading"][()]
                     start = g["particles/position_start"][()]
+                    cycle = g["particles/rotation_cycle"][()]
                     rows = entry["largest_rotations"]
                     self.assertEqual([r["body"] for r in rows],
                                      sorted(range(len(loading)), key=lambda i: -loading[i])[:3])
-                    for r in rows:
+                    by_cycle = entry["largest_cycle_rotations"]
+                    self.assertEqual([r["body"] for r in by_cycle],
+                                     sorted(range(len(cycle)), key=lambda i: -cycle[i])[:3])
+                    self.assertNotEqual([r["body"] for r in rows], [r["body"] for r in by_cycle])
+                    for r in rows + by_cycle:
                         x, y, z = start[r["body"]]
                         self.assertEqual(r["loading_deg"], loading[r["body"]])
                         self.assertEqual(r["cycle_deg"], g["particles/rotation_cycle"][r["body"]])
@@ -198,8 +203,9 @@ class Compare(unittest.TestCase):
                         x0 = (scene["box"]["length"] - scene["sleeper"]["length"]) / 2
                         self.assertEqual(r["beneath"],
                                          bool(x0 <= x <= x0 + scene["sleeper"]["length"]))
-        self.assertIn("## The 3 largest rotations during loading, per run",
-                      self.compare(self.new))
+        out = self.compare(self.new)
+        self.assertIn("## The 3 largest rotations during loading, per run", out)
+        self.assertIn("## The 3 largest rotations over the cycle, per run", out)
 
     def test_full_scale_runs_sit_beside_the_paper(self):
         out = self.compare(self.full)
