@@ -160,11 +160,18 @@ def goals(groups):
 
 
 def study_hours(runs):
-    """Wall time from the first run's start to the last one's end, h."""
+    """Wall time from the first run's start to the last one's end, h. A run resumed
+    from its checkpoint records the start of its last part, and its own wall time
+    (wall_seconds) includes the parts before: it started no later than its end less
+    that time, which is what counts for it."""
     def when(run, name):
         return datetime.datetime.fromisoformat(str(run.attribute(name)).replace("Z", "+00:00"))
+
+    def start_of(run):
+        ran = datetime.timedelta(seconds=float(run.attribute("wall_seconds")))
+        return min(when(run, "started"), when(run, "finished") - ran)
     try:
-        start = min(when(r, "started") for r in runs)
+        start = min(start_of(r) for r in runs)
         end = max(when(r, "finished") for r in runs)
     except (ArchiveError, ValueError):
         return None
