@@ -61,6 +61,8 @@ struct RunRecord {
   bool ok = false;
   std::string message;  // why it failed; empty when ok
   std::string started, finished;
+  // s, the runner's clock over this attempt only: after a resume, the part since it.
+  // A finished run's whole time, the parts before included, is result->wall_seconds.
   double wall_seconds = 0.0;
   int threads = 1;
   std::string git_revision;
