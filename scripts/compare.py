@@ -34,7 +34,7 @@ import sys
 from ballast_archive import (ZONES, ArchiveError, add_run_arguments, chosen_runs,
                              open_archive)
 from compare_samples import sample_stats, samples_json, samples_markdown, span
-from largest_rotations import largest_rotations, largest_rotations_markdown
+from largest_rotations import largest_rotations, largest_rotations_markdown, turning_back
 from paper_values import (FULL_SCALE_SCENES, PHASES, STAGES, comparable, paper_sample,
                           paper_text, paper_values, scale_shortfalls)
 from replicates import group_runs, ordered_union
@@ -268,6 +268,7 @@ def run_json(run, rows):
     if turned:
         entry["largest_rotations"] = turned
         entry["largest_cycle_rotations"] = largest_rotations(run, by="cycle")
+        entry["turning_back"] = turning_back(run)
     both = counted_both_ways(run)
     if both:
         paper = paper_values(run).get("contacts", [(None,)])[0][0]

@@ -18,6 +18,7 @@ import tempfile
 import unittest
 
 import h5py
+import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCRIPTS = os.path.join(HERE, "..", "..", "scripts")
@@ -25,6 +26,7 @@ sys.path.insert(0, SCRIPTS)
 sys.path.insert(0, HERE)
 
 from ballast_archive import open_archive  # noqa: E402
+from largest_rotations import turn_cosines  # noqa: E402
 from fig_zones import zone_figure  # noqa: E402
 from synthetic_archive import FULL, run, write_single, write_study  # noqa: E402
 
@@ -69,6 +71,24 @@ def is_png(path):
         head = f.read(24)
     width, height = struct.unpack(">II", head[16:24])
     return head[:8] == b"\x89PNG\r\n\x1a\n" and width >= 500 and height >= 300
+
+
+class TurnCosines(unittest.TestCase):
+    def test_the_cosine_from_three_angles_is_that_of_the_vectors(self):
+        rng = np.random.default_rng(7)
+        l, u = rng.normal(size=(50, 3)), rng.normal(size=(50, 3))
+        u[0] = -0.3 * l[0]  # turned straight back
+        u[1] = 2.0 * l[1]  # went on the same way
+        cos = turn_cosines(np.linalg.norm(l, axis=1), np.linalg.norm(u, axis=1),
+                           np.linalg.norm(l + u, axis=1))
+        expected = np.sum(l * u, axis=1) / (np.linalg.norm(l, axis=1) * np.linalg.norm(u, axis=1))
+        np.testing.assert_allclose(cos, expected, atol=1e-9)
+        self.assertAlmostEqual(cos[0], -1.0)
+        self.assertAlmostEqual(cos[1], 1.0)
+
+    def test_a_particle_that_did_not_turn_has_no_cosine(self):
+        cos = turn_cosines([0.0, 1.0], [1.0, 0.0], [1.0, 1.0])
+        self.assertTrue(np.all(np.isnan(cos)))
 
 
 class Compare(unittest.TestCase):
@@ -188,9 +208,13 @@ class Compare(unittest.TestCase):
                     self.assertEqual([r["body"] for r in by_cycle],
                                      sorted(range(len(cycle)), key=lambda i: -cycle[i])[:3])
                     self.assertNotEqual([r["body"] for r in rows], [r["body"] for r in by_cycle])
+                    unloading = g["particles/rotation_unloading"][()]
                     for r in rows + by_cycle:
                         x, y, z = start[r["body"]]
                         self.assertEqual(r["loading_deg"], loading[r["body"]])
+                        l, u, c = loading[r["body"]], unloading[r["body"]], cycle[r["body"]]
+                        self.assertAlmostEqual(
+                            r["cosine"], max(-1.0, min(1.0, (c * c - l * l - u * u) / (2 * l * u))))
                         self.assertEqual(r["cycle_deg"], g["particles/rotation_cycle"][r["body"]])
                         # Depth below the top, down positive; the nearer side wall.
                         if has_zones:
@@ -203,7 +227,21 @@ class Compare(unittest.TestCase):
                         x0 = (scene["box"]["length"] - scene["sleeper"]["length"]) / 2
                         self.assertEqual(r["beneath"],
                                          bool(x0 <= x <= x0 + scene["sleeper"]["length"]))
+                    # Turning back: the weighted cosine is Σ l·u / Σ |l||u|, l·u from the
+                    # three angles (the cycle's rotation vector is the sum of the other two).
+                    back = entry["turning_back"]
+                    dots = [(c * c - l * l - u * u) / 2
+                            for l, u, c in zip(loading, unloading, cycle)]
+                    products = [l * u for l, u in zip(loading, unloading)]
+                    clipped = [max(-p, min(p, d)) for d, p in zip(dots, products)]
+                    self.assertEqual(back["particles"], len(loading))
+                    self.assertAlmostEqual(back["cosine"], sum(clipped) / sum(products))
+                    self.assertAlmostEqual(back["turned_back"],
+                                           sum(d < 0 for d in dots) / len(loading))
+                    self.assertAlmostEqual(back["cycle_over_sum"],
+                                           sum(cycle) / (sum(loading) + sum(unloading)))
         out = self.compare(self.new)
+        self.assertIn("## Turning back on unloading, per run", out)
         self.assertIn("## The 3 largest rotations during loading, per run", out)
         self.assertIn("## The 3 largest rotations over the cycle, per run", out)
 
