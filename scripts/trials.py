@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""One row per box-test run: the "What was tried" table of docs/VALIDATION.md.
+"""One row per box-test run: the table of docs/TRIALS.md.
 
     /usr/bin/python3 scripts/trials.py LABEL=RUN.h5 [LABEL=RUN.h5 ...] [--csv FILE]
 

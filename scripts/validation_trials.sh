@@ -1,5 +1,5 @@
 #!/bin/bash
-# The trials behind docs/VALIDATION.md's "What was tried": full-scale box tests of
+# The trials behind docs/TRIALS.md: full-scale box tests of
 # seed 1, each changing one thing in the preparation or the loading, one thread each
 # (about 2 hours on one core in all), then their table.
 #
