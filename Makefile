@@ -5,7 +5,7 @@ JOBS   ?= $(shell nproc)
 MAKEFLAGS += --no-print-directory
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build run test test-fast test-slow test-sanitize test-slurm mutations bench bench-peers format clean
+.PHONY: all deps configure build run test test-fast test-slow test-sanitize test-slurm mutations bench bench-peers tradeoffs format clean
 
 all: build
 
@@ -86,6 +86,12 @@ bench-peers: build
 	@bash scripts/install-peers.sh
 	@/usr/bin/python3 tests/bench/peers/bench_peers.py --ballast $(BUILD)/study/ballast \
 	  --cases cases --cache $(BUILD)/peers $(PEERS_FLAGS)
+
+# Speed against accuracy on the box test (docs/TRADEOFFS.md): the studies, tables and
+# Pareto plots of Sample 1 and spheres, into docs/tradeoffs. SCALE=smoke (default) or
+# full (the paper's box, overnight); an interrupted run resumes where it stopped.
+tradeoffs: build
+	@JOBS=$(JOBS) bash scripts/tradeoffs.sh $(or $(SCALE),smoke) $(BUILD)/tradeoffs/$(or $(SCALE),smoke)
 
 format:
 	@git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
