@@ -210,6 +210,9 @@ def pareto_plot(path, reference, variants, table, marks):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(7.5, 5))
+    # Variants that give the same bits (a preset that only sets a knob's value) share
+    # a point and one label, "a = b", instead of two labels printed over each other.
+    points = {}
     for v in variants:
         if v is reference:
             continue
@@ -220,7 +223,9 @@ def pareto_plot(path, reference, variants, table, marks):
         ax.scatter([x], [max(w, 1e-2)], marker="*" if star else "o", s=160 if star else 30,
                    color="tab:red" if star else "tab:blue", zorder=3)
         label = next((p for p, n in marks.items() if n == v.name), v.name)
-        ax.annotate(label, (x, max(w, 1e-2)), textcoords="offset points", xytext=(4, 3),
+        points.setdefault((x, max(w, 1e-2)), []).append(label)
+    for xy, labels in points.items():
+        ax.annotate(" = ".join(labels), xy, textcoords="offset points", xytext=(4, 3),
                     fontsize=7)
     ax.axhline(1.0, color="grey", ls="--", lw=1)
     ax.text(ax.get_xlim()[0], 1.03, " the reference's seed-to-seed scatter", fontsize=7,
