@@ -34,7 +34,8 @@ import sys
 from ballast_archive import (ZONES, ArchiveError, add_run_arguments, chosen_runs,
                              open_archive)
 from compare_samples import sample_stats, samples_json, samples_markdown, span
-from largest_rotations import largest_rotations, largest_rotations_markdown, turning_back
+from largest_rotations import (largest_rotations, largest_rotations_markdown, turning_back,
+                               turning_back_markdown)
 from paper_values import (FULL_SCALE_SCENES, PHASES, STAGES, comparable, paper_sample,
                           paper_text, paper_values, scale_shortfalls)
 from replicates import group_runs, ordered_union
@@ -286,7 +287,7 @@ def report(path, runs, stats):
              "1,936 spheres or 1,770 clumps, 700 mm long, 40 kN.\n",
              "\n".join(scale_lines([s.group for s in stats])), "", markdown(runs)]
     for extra in (counted_both_ways_markdown(runs), largest_rotations_markdown(runs),
-                  samples_markdown(stats)):
+                  turning_back_markdown(runs), samples_markdown(stats)):
         if extra:
             parts += ["", extra]
     return "\n".join(parts)

@@ -76,8 +76,8 @@ def largest_rotations(run, k=3, by="loading"):
     x0 = 0.5 * (length - float(run.scene_value("sleeper", "length")))
     x1 = length - x0
     rows = []
-    # Stable, so that equal rotations keep the bodies' order.
     cos = turn_cosines(loading, unloading, cycle)
+    # Stable, so that equal rotations keep the bodies' order.
     for i in np.argsort(-(loading if by == "loading" else cycle), kind="stable")[:k]:
         x, y, z = (float(c) for c in start[i])
         rows.append({"body": int(i), "loading_deg": float(loading[i]),
@@ -115,19 +115,24 @@ def largest_rotations_markdown(runs, k=3):
                 "| run | body | loading | unloading | cycle | cos | depth (mm) "
                 "| to a side wall (mm) | sleeper |",
                 "|---|---|---|---|---|---|---|---|---|"] + lines))
+    return "\n\n".join(parts)
+
+
+def turning_back_markdown(runs):
+    """The table of turning_back for the loaded runs ('' if none)."""
     back = [(run, turning_back(run)) for run in runs]
     lines = [f"| {run.label} | {t['particles']:,} | {t['turned_back']:.2f} | {t['cosine']:+.2f} "
              f"| {t['cycle_over_sum']:.2f} |" for run, t in back
              if t is not None and t["turned_back"] is not None]
-    if lines:
-        parts.append("\n".join([
-            "## Turning back on unloading, per run", "",
-            "Of the particles that turned both during loading and on unloading: the share "
-            "whose unloading turned them back, and the cosine between the two rotations "
-            "weighted by their sizes (+1: every particle went on the same way, −1: every "
-            "one turned straight back). Last, the mean cycle rotation over the sum of the "
-            "mean loading and unloading rotations, the only such measure the paper's means "
-            "give (Sample 1 0.66, spheres 0.90).", "",
-            "| run | particles | turned back | cosine, weighted | cycle / (loading + "
-            "unloading), means |", "|---|---|---|---|---|"] + lines))
-    return "\n\n".join(parts)
+    if not lines:
+        return ""
+    return "\n".join([
+        "## Turning back on unloading, per run", "",
+        "Of the particles that turned both during loading and on unloading: the share "
+        "whose unloading turned them back, and the cosine between the two rotations "
+        "weighted by their sizes (+1: every particle went on the same way, −1: every "
+        "one turned straight back). Last, the mean cycle rotation over the sum of the "
+        "mean loading and unloading rotations, the only such measure the paper's means "
+        "give (Sample 1 0.66, spheres 0.90).", "",
+        "| run | particles | turned back | cosine, weighted | cycle / (loading + "
+        "unloading), means |", "|---|---|---|---|---|"] + lines)

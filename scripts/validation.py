@@ -95,9 +95,11 @@ def seating(run):
     return (ended.decode() if isinstance(ended, bytes) else ended, float(a["unbalanced"]))
 
 
-def tally(flags, what):
-    """"k of n <what>: " for the replicates a goal asks of every one of them."""
-    return f"{sum(bool(f) for f in flags)} of {len(flags)} {what}: "
+def every_replicate(flags, what, values):
+    """(measured, holds) of a goal asked of every replicate: "k of n <what>: <values>",
+    and "yes" only when every flag is."""
+    return (f"{sum(bool(f) for f in flags)} of {len(flags)} {what}: {values}",
+            "yes" if all(flags) else "no")
 
 
 def goals(groups):
@@ -117,15 +119,13 @@ def goals(groups):
         t = table_of(g)
         res = [t[x.id]["resilient_settlement_mm"] for x in g.runs]
         rows.append((f"{name_of(g)}: rebounds in every replicate (resilient settlement > 0)",
-                     tally([v > 0 for v in res], "rebound") +
-                     ", ".join(f"{v:.3f}" for v in res) + " mm",
-                     "yes" if all(v > 0 for v in res) else "no"))
+                     *every_replicate([v > 0 for v in res], "rebound",
+                                      ", ".join(f"{v:.3f}" for v in res) + " mm")))
         pairs = [(t[x.id]["rotation_cycle_max_deg"], t[x.id]["rotation_loading_max_deg"])
                  for x in g.runs]
         rows.append((f"{name_of(g)}: cycle's largest rotation below the loading's, every replicate",
-                     tally([c < ld for c, ld in pairs], "below") +
-                     ", ".join(f"{c:.2f} vs {ld:.2f}°" for c, ld in pairs),
-                     "yes" if all(c < ld for c, ld in pairs) else "no"))
+                     *every_replicate([c < ld for c, ld in pairs], "below",
+                                      ", ".join(f"{c:.2f} vs {ld:.2f}°" for c, ld in pairs))))
         s = stat(g, "zone_beneath_dz_peak_mm")
         rows.append((f"{name_of(g)}: top layer beneath the sleeper sinks at peak",
                      interval(s, "{:.3f}") + " mm",
@@ -144,9 +144,9 @@ def goals(groups):
         each = [b is not None and b >= 20 and PAPER_MAX_FORCE_N / 2 <= f <= 2 * PAPER_MAX_FORCE_N
                 for b, f in zip(bodies, force)]
         rows.append((f"{name_of(g)}: sleeper on ≥ 20 particles at 40 kN, largest force within 2× "
-                     "of 4.2 kN", tally(each, "meet it") +
-                     ", ".join(f"{b:.0f} / {f * KM:.1f} kN" for b, f in zip(bodies, force)),
-                     "yes" if all(each) else "no"))
+                     "of 4.2 kN", *every_replicate(
+                         each, "meet it",
+                         ", ".join(f"{b:.0f} / {f * KM:.1f} kN" for b, f in zip(bodies, force)))))
         sample = paper_sample(g.runs[0])
         if sample in PAPER_POROSITY:
             s = stat(g, "porosity_grid")
@@ -162,8 +162,9 @@ def goals(groups):
                          "yes" if within else "no"))
         ends = [seating(x) for x in g.runs]
         rows.append((f"{g.name}: at rest under the preload (seating ended by equilibrium)",
-                     tally([e == "equilibrium" for e, _ in ends], "at rest") + ", ".join(f"{e} ({u:.4f})" if u is not None else e for e, u in ends),
-                     "yes" if all(e == "equilibrium" for e, _ in ends) else "no"))
+                     *every_replicate([e == "equilibrium" for e, _ in ends], "at rest",
+                                      ", ".join(f"{e} ({u:.4f})" if u is not None else e
+                                                for e, u in ends))))
     return rows
 
 

@@ -26,8 +26,8 @@ sys.path.insert(0, SCRIPTS)
 sys.path.insert(0, HERE)
 
 from ballast_archive import open_archive  # noqa: E402
-from largest_rotations import turn_cosines  # noqa: E402
 from fig_zones import zone_figure  # noqa: E402
+from largest_rotations import turn_cosines  # noqa: E402
 from synthetic_archive import FULL, run, write_single, write_study  # noqa: E402
 
 T2 = 4.3027  # t(0.975, 2 df)
