@@ -34,6 +34,11 @@ struct CheckpointPlan {
   // The run's log so far, kept in the checkpoint and written again to the log on
   // resuming (the study archives each run's whole log); empty function: not kept.
   std::function<std::string()> log_text;
+  // A prepared bed (PrepStage::kPrepared) shared with other runs whose scenes give
+  // the same bed_text (cases/shared_bed.hpp): a run starts from bed_path when the file
+  // is there, and, when it prepares its own bed and is the bed's writer, writes it there.
+  std::string bed_path, bed_text;
+  bool bed_writer = false;
 };
 
 // What the load loop carries from step to step, besides the simulation.

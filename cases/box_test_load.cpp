@@ -14,6 +14,7 @@
 #include "cases/contact_census.hpp"
 #include "cases/cycle_recorder.hpp"
 #include "engine/clump_shape.hpp"
+#include "engine/errors.hpp"
 #include "engine/porosity.hpp"
 
 namespace ballast {
@@ -277,17 +278,50 @@ BoxTestResult run_box_test(const BoxTestScene& s, std::ostream* log,
   double before = 0.0;  // wall seconds the run took before its last checkpoint
   // A checkpoint at every point between two preparation stages: insurance, not a
   // result, so one the file system refuses is reported and the run goes on.
+  // The shared bed, when this run writes it, likewise: other runs prepare their own
+  // without it.
+  CheckpointPlan bed_plan = plan;
+  bed_plan.path = plan.bed_path;
+  bed_plan.scene_text = plan.bed_text;
+  const bool writes_bed = plan.bed_writer && !plan.bed_path.empty();
   PrepCheckpoint at_point;
-  if (!plan.path.empty())
+  if (!plan.path.empty() || writes_bed)
     at_point = [&](const PreparedBed& b, const PrepPoint& p) {
       PrepPoint now = p;
       now.run_seconds = before + seconds_since(start);
-      try {
-        write_preparation_checkpoint(plan, b, now);
-      } catch (const std::runtime_error& e) {
-        if (log) *log << "warning: " << e.what() << "; the run goes on without it\n";
-      }
+      const auto write = [&](const CheckpointPlan& to) {
+        try {
+          write_preparation_checkpoint(to, b, now);
+        } catch (const std::runtime_error& e) {
+          if (log) *log << "warning: " << e.what() << "; the run goes on without it\n";
+        }
+      };
+      if (!plan.path.empty()) write(plan);
+      if (writes_bed && p.done == PrepStage::kPrepared) write(bed_plan);
     };
+  // Starts from the shared bed when there is one; one that cannot be read is reported
+  // and this run prepares its own.
+  const auto from_shared_bed = [&] {
+    if (plan.bed_path.empty() || !std::filesystem::exists(plan.bed_path)) return false;
+    try {
+      RunCheckpoint c = read_checkpoint(bed_plan, sim);
+      if (c.point.done != PrepStage::kPrepared)
+        throw SetupError("checkpoint " + plan.bed_path + " holds no prepared bed");
+      bed.templates = std::move(c.templates);
+      bed.stages = std::move(c.stages);
+      bed.dt_spheres = c.dt_spheres;
+      before = c.point.run_seconds;  // the bed's preparation, as its writer ran it
+      if (log)
+        *log << c.log << "prepared bed from " << plan.bed_path
+             << ": another run of the study prepared it from the same scene and seed\n";
+      return true;
+    } catch (const SetupError& e) {
+      if (log) *log << "warning: " << e.what() << "; this run prepares its own bed\n";
+      bed = PreparedBed{Simulation(quiet), {}, 0.0, {}};
+      before = 0.0;
+      return false;
+    }
+  };
   bool loading_resumed = false;
   if (resuming) {
     RunCheckpoint c = read_checkpoint(plan, sim);
@@ -312,7 +346,7 @@ BoxTestResult run_box_test(const BoxTestScene& s, std::ostream* log,
              << ", " << c.loop.cycles.cycles_done() << " of " << s.cycles << " cycles done\n";
       run_cycles(s, sim, out, c.loop, log, plan, bed.templates, start, true);
     }
-  } else {
+  } else if (!from_shared_bed()) {
     bed = prepare_box_test(s, log, at_point);
   }
   if (!loading_resumed) {

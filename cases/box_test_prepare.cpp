@@ -253,10 +253,15 @@ void continue_box_test_preparation(const BoxTestScene& s, PreparedBed& out, Prep
                                 s.equilibrium_ratio, s.max_stage_steps, log));
     reached(PrepStage::kFrictionRaised);
   }
-  if (!at.plate) return;
-  lift();
-  // The top rebounds a little from the plate's pressure: settle again.
-  out.stages.push_back(settle(sim, "plate off", s.equilibrium_ratio, s.max_stage_steps, log));
+  if (due(PrepStage::kPrepared)) {
+    if (at.plate) {
+      lift();
+      // The top rebounds a little from the plate's pressure: settle again.
+      out.stages.push_back(settle(sim, "plate off", s.equilibrium_ratio, s.max_stage_steps, log));
+      at.plate = false;
+    }
+    reached(PrepStage::kPrepared);
+  }
 }
 
 PreparedBed prepare_box_test(const BoxTestScene& s, std::ostream* log,

@@ -64,12 +64,15 @@ struct PreparedBed {
 // a killed run resumes (box_test_checkpoint.hpp): a preparation of Sample 2 at full
 // scale takes half an hour of one core, and a kill in it lost all of it.
 enum class PrepStage : int {
-  kNone = 0,       // not in the preparation (a checkpoint of the load cycles)
-  kGenerated,      // stages 1-2 done (or the packing imported), the plate on or the lid away
-  kSettled,        // the frictionless settling done, the compaction friction set
-  kCompacted,      // compaction under the enhanced gravity done
-  kAtOneG,         // settled again at 9.81 m/s²
-  kFrictionRaised  // settled again with the loading friction
+  kNone = 0,        // not in the preparation (a checkpoint of the load cycles)
+  kGenerated,       // stages 1-2 done (or the packing imported), the plate on or the lid away
+  kSettled,         // the frictionless settling done, the compaction friction set
+  kCompacted,       // compaction under the enhanced gravity done
+  kAtOneG,          // settled again at 9.81 m/s²
+  kFrictionRaised,  // settled again with the loading friction
+  kPrepared         // the plate lifted and the bed settled again (or no plate): what
+                    // stage 4 starts from, and what runs of a study share
+                    // (cases/shared_bed.hpp)
 };
 
 // Where a preparation stands at such a point, besides the bed (PreparedBed).
