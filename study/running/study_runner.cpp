@@ -23,6 +23,7 @@
 #include "study/matrix/study_json.hpp"
 #include "study/matrix/study_scene.hpp"
 #include "study/running/run_log.hpp"
+#include "study/running/shared_beds.hpp"
 #include "study/running/stop_signals.hpp"
 #include "study/running/study_progress.hpp"
 
@@ -280,6 +281,15 @@ int run_study(const StudyOptions& o) {
             << " (" << kGitRevision << ")\n"
             << std::flush;
 
+  std::vector<std::string> scenes;
+  for (const PreparedRun* r : todo) scenes.push_back(r->scene_json);
+  SharedBeds beds(scenes, store->parts_dir());
+  if (beds.receivers() > 0) {
+    std::cout << "shared beds: " << beds.receivers() << " runs may start from " << beds.beds()
+              << " beds that other runs prepare (the same scene but for its loading, the same "
+                 "seed: docs/STUDY.md)\n"
+              << std::flush;
+  }
   ProgressBoard board(std::cout, live, todo.size(), archived - retried, plan.jobs);
   board_ptr = &board;
   std::exception_ptr failure;
@@ -295,11 +305,15 @@ int run_study(const StudyOptions& o) {
       if (stop.load() || StopSignals::count() > 0) continue;
       omp_set_num_threads(plan.threads);  // this run's engine: its own inner team
       try {
-        const PreparedRun& run = *todo[static_cast<std::size_t>(k)];
-        const RunRecord r = execute(run, plan.threads, board, checkpoint_plan(o, *store, run));
+        const std::size_t at = static_cast<std::size_t>(k);
+        const PreparedRun& run = *todo[at];
+        CheckpointPlan checkpoints = checkpoint_plan(o, *store, run);
+        beds.assign(at, checkpoints);
+        const RunRecord r = execute(run, plan.threads, board, checkpoints);
         store->record(r);
         std::error_code ignored;  // the part holds the run; the study's end clears the rest
-        std::filesystem::remove(checkpoint_plan(o, *store, run).path, ignored);
+        std::filesystem::remove(checkpoints.path, ignored);
+        beds.ended(at);
         board.finished(r);
       } catch (...) {
         std::lock_guard<std::mutex> lock(failure_mutex);
