@@ -13,10 +13,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <set>
 #include <sstream>
 #include <thread>
 
 #include "cases/box_test_load.hpp"
+#include "cases/shared_bed.hpp"
 #include "study/archive/study_store.hpp"
 #include "study/archive/study_summary.hpp"
 #include "study/build_info.hpp"
@@ -165,9 +168,17 @@ RunsToDo runs_to_do(const StudyStore& store, const std::vector<const PreparedRun
     t.retried += retry ? 1 : 0;
     if (!found || retry) t.runs.push_back(r);
   }
-  std::stable_sort(t.runs.begin(), t.runs.end(), [](const PreparedRun* a, const PreparedRun* b) {
-    return estimated_cost(*a) > estimated_cost(*b);
-  });
+  // At the same cost, a run that may start from another's bed (docs/STUDY.md, "Shared
+  // beds") goes after the runs that prepare their own, so that its bed is ready.
+  std::set<std::string> beds;
+  std::map<const PreparedRun*, bool> shares;
+  for (const PreparedRun* r : t.runs)
+    shares[r] = !beds.insert(bed_defining_text(json::parse(r->scene_json))).second;
+  std::stable_sort(t.runs.begin(), t.runs.end(),
+                   [&shares](const PreparedRun* a, const PreparedRun* b) {
+                     const double ca = estimated_cost(*a), cb = estimated_cost(*b);
+                     return ca != cb ? ca > cb : shares[a] < shares[b];
+                   });
   return t;
 }
 
