@@ -6,6 +6,7 @@
 // pressure) must change it; and the key must drop exactly the loading fields.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cases/box_test_prepare.hpp"
@@ -18,16 +19,10 @@ using nlohmann::json;
 
 namespace {
 
-// tests/data/study/tiny.json's scene: 40 spheres, a preparation of a few thousand steps.
+// tests/data/study/tiny.json: 40 spheres, a preparation of a few thousand steps.
 json tiny_scene() {
-  return json::parse(R"({"name": "tiny",
-    "particles": {"shape": "spheres", "count": 40, "diameter": 0.03625, "seed": 1},
-    "box": {"length": 0.15, "width": 0.12, "height": 0.25},
-    "preparation": {"initial_porosity": 0.5, "expansion_speed": 0.25, "gravity_factor": 10,
-                    "equilibrium_ratio": 0.02, "max_stage_steps": 10000},
-    "sleeper": {"length": 0.08, "height": 0.04, "preload": 200, "peak_load": 2000,
-                "frequency": 100, "cycles": 1, "max_speed": 0.5},
-    "measurement": {"series_every": 50}})");
+  std::ifstream in(std::string(BALLAST_TEST_DATA) + "/study/tiny.json");
+  return json::parse(in);
 }
 
 std::uint64_t prepared_bed_hash(const json& scene) {
