@@ -22,7 +22,8 @@ constexpr PresetField kPaper[] = {
 // numerics knob whose errors stay within the reference's seed-to-seed scatter in
 // docs/TRADEOFFS.md's smoke table (0.88 of the ball-steps). The clump mass mode "sum"
 // saves a further 0.1 but moves the largest rotation and displacement by 16 to 18
-// scatters there, so it is left to "fast".
+// scatters there, so it is left to "fast". At full scale dt_safety 1 halves Sample 1's
+// settlement and rotation (docs/TRADEOFFS.md): cheaper, not free.
 constexpr PresetField kBalanced[] = {
     {"/numerics/dt_safety", "1.0"},
 };
