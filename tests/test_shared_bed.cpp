@@ -25,6 +25,11 @@ json tiny_scene() {
   return json::parse(in);
 }
 
+json changed_at(json scene, const char* field, const json& value) {
+  scene[json::json_pointer(field)] = value;
+  return scene;
+}
+
 std::uint64_t prepared_bed_hash(const json& scene) {
   const PreparedBed bed = prepare_box_test(parse_box_test_scene(scene), nullptr);
   return state_hash(bed.sim);
@@ -48,36 +53,24 @@ const std::pair<const char*, json> kChanged[] = {
 TEST(SharedBed, TheKeyDropsTheLoadingFieldsAndKeepsTheRest) {
   const json scene = tiny_scene();
   const std::string key = bed_defining_text(scene);
-  for (const auto& [field, value] : kChanged) {
-    json changed = scene;
-    changed[json::json_pointer(field)] = value;
-    EXPECT_EQ(bed_defining_text(changed), key) << field;
-  }
+  for (const auto& [field, value] : kChanged)
+    EXPECT_EQ(bed_defining_text(changed_at(scene, field, value)), key) << field;
   for (const char* field : {"/sleeper/preload", "/sleeper/length", "/sleeper/gain",
-                            "/particles/seed", "/preparation/gravity_factor"}) {
-    json changed = scene;
-    changed[json::json_pointer(field)] = 0.5;
-    EXPECT_NE(bed_defining_text(changed), key) << field;
-  }
+                            "/particles/seed", "/preparation/gravity_factor"})
+    EXPECT_NE(bed_defining_text(changed_at(scene, field, 0.5)), key) << field;
   // Every loading-only field is one the scene reads: a misspelt pointer would keep
   // nothing out of the key (the measurement section is dropped whole).
   for (const char* field : loading_only_fields()) {
     if (std::string(field) == "/measurement") continue;
-    json changed = scene;
-    changed[json::json_pointer(field)] = "not a number";
-    EXPECT_ANY_THROW(parse_box_test_scene(changed)) << field;
+    EXPECT_ANY_THROW(parse_box_test_scene(changed_at(scene, field, "not a number"))) << field;
   }
 }
 
 TEST(SharedBed, ThePreparationReadsNoLoadingField) {
   const json scene = tiny_scene();
   const std::uint64_t bed = prepared_bed_hash(scene);
-  for (const auto& [field, value] : kChanged) {
-    json changed = scene;
-    changed[json::json_pointer(field)] = value;
-    EXPECT_EQ(prepared_bed_hash(changed), bed) << field;
-  }
-  json preload = scene;
-  preload["sleeper"]["preload"] = 400.0;
-  EXPECT_NE(prepared_bed_hash(preload), bed) << "the preload sets the plate's pressure";
+  for (const auto& [field, value] : kChanged)
+    EXPECT_EQ(prepared_bed_hash(changed_at(scene, field, value)), bed) << field;
+  EXPECT_NE(prepared_bed_hash(changed_at(scene, "/sleeper/preload", 400.0)), bed)
+      << "the preload sets the plate's pressure";
 }

@@ -3,18 +3,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <nlohmann/json.hpp>
 
-#include "cases/shared_bed.hpp"
 #include "engine/fnv1a.hpp"
 
 namespace ballast {
 
-SharedBeds::SharedBeds(const std::vector<std::string>& scene_jsons, const std::string& parts)
-    : bed_of_(scene_jsons.size(), -1) {
+SharedBeds::SharedBeds(const std::vector<std::string>& bed_texts, const std::string& parts)
+    : bed_of_(bed_texts.size(), -1) {
   std::map<std::string, std::vector<std::size_t>> runs_of;
-  for (std::size_t k = 0; k < scene_jsons.size(); ++k)
-    runs_of[bed_defining_text(nlohmann::json::parse(scene_jsons[k]))].push_back(k);
+  for (std::size_t k = 0; k < bed_texts.size(); ++k) runs_of[bed_texts[k]].push_back(k);
   for (auto& [text, runs] : runs_of) {
     char name[40];
     std::snprintf(name, sizeof name, "/bed-%016llx.checkpoint",

@@ -18,9 +18,9 @@ namespace ballast {
 
 class SharedBeds {
  public:
-  // scene_jsons: the scenes of the runs to do, in the order they start; parts: the
-  // archive's parts folder (a bed left there by a killed study is used too).
-  SharedBeds(const std::vector<std::string>& scene_jsons, const std::string& parts);
+  // bed_texts: bed_defining_text of the runs to do, in the order they start; parts:
+  // the archive's parts folder (a bed left there by a killed study is used too).
+  SharedBeds(const std::vector<std::string>& bed_texts, const std::string& parts);
 
   // Fills run k's bed fields of `plan` (nothing for a run that shares no bed).
   void assign(std::size_t k, CheckpointPlan& plan) const;

@@ -41,6 +41,7 @@ struct PreparedRun {
   const RunSpec* spec = nullptr;
   BoxTestScene scene;
   std::string scene_json;
+  std::string bed_text;  // what its prepared bed depends on (cases/shared_bed.hpp)
 };
 
 // The study file, its base scene and every run's scene, all checked: whatever is wrong
@@ -78,7 +79,8 @@ PreparedStudy prepare(const std::string& study_file) {
   p.runs.reserve(p.spec.runs.size());
   for (const RunSpec& r : p.spec.runs) {
     const json scene = run_scene_json(p.base_scene, r);
-    p.runs.push_back({&r, parse_run_scene(scene, r, study_file, p.spec.scene), scene.dump(2)});
+    p.runs.push_back({&r, parse_run_scene(scene, r, study_file, p.spec.scene), scene.dump(2),
+                      bed_defining_text(scene)});
   }
   return p;
 }
@@ -172,8 +174,7 @@ RunsToDo runs_to_do(const StudyStore& store, const std::vector<const PreparedRun
   // beds") goes after the runs that prepare their own, so that its bed is ready.
   std::set<std::string> beds;
   std::map<const PreparedRun*, bool> shares;
-  for (const PreparedRun* r : t.runs)
-    shares[r] = !beds.insert(bed_defining_text(json::parse(r->scene_json))).second;
+  for (const PreparedRun* r : t.runs) shares[r] = !beds.insert(r->bed_text).second;
   std::stable_sort(t.runs.begin(), t.runs.end(),
                    [&shares](const PreparedRun* a, const PreparedRun* b) {
                      const double ca = estimated_cost(*a), cb = estimated_cost(*b);
@@ -292,9 +293,9 @@ int run_study(const StudyOptions& o) {
             << " (" << kGitRevision << ")\n"
             << std::flush;
 
-  std::vector<std::string> scenes;
-  for (const PreparedRun* r : todo) scenes.push_back(r->scene_json);
-  SharedBeds beds(scenes, store->parts_dir());
+  std::vector<std::string> bed_texts;
+  for (const PreparedRun* r : todo) bed_texts.push_back(r->bed_text);
+  SharedBeds beds(bed_texts, store->parts_dir());
   if (beds.receivers() > 0) {
     std::cout << "shared beds: " << beds.receivers() << " runs may start from " << beds.beds()
               << " beds that other runs prepare (the same scene but for its loading, the same "
