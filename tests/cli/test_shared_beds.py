@@ -99,8 +99,15 @@ class SharedBeds(unittest.TestCase):
                 p.send_signal(signal.SIGTERM)
                 break
         p.communicate(timeout=120)
-        beds = [n for n in os.listdir(out + ".parts") if n.startswith("bed-")]
-        self.assertEqual(len(beds), 1, os.listdir(out + ".parts"))
+        parts = os.listdir(out + ".parts")
+        beds = [n for n in parts if n.startswith("bed-")]
+        self.assertEqual(len(beds), 1, parts)
+        # The signal is seen within 0.1 s: a fast machine may have loaded the bed into
+        # the second run and checkpointed it by then. Without that checkpoint the run
+        # starts over and must read the bed again.
+        for name in parts:
+            if name.endswith(".checkpoint") and not name.startswith("bed-"):
+                os.remove(os.path.join(out + ".parts", name))
         with open(os.path.join(out + ".parts", beds[0]), "r+b") as f:
             f.seek(-100, os.SEEK_END)  # in the state, before the final hash
             f.write(b"\xff" * 8)
