@@ -2,7 +2,7 @@
 """The full-scale paper study judged against Lu & McDowell (2007): the tables of
 docs/VALIDATION.md, from the archive of `ballast study cases/paper_study.json`.
 
-    /usr/bin/python3 scripts/validation.py paper.h5 [--csv DIR]
+    /usr/bin/python3 scripts/validation.py paper.h5 [more.h5 ...] [--csv DIR]
 
 Prints, in Markdown,
   1. the goals a researcher checks our tool against (the paper's headline findings
@@ -11,11 +11,15 @@ Prints, in Markdown,
      replicates (scripts/replicates.py), the spread of the runs, the paper's number;
   3. how each run's seating ended (equilibrium, steady creep, step limit) and its
      wall time.
-`--csv DIR` also writes the key-quantity table as DIR/paper_study.csv. Every number
+Several archives are read as one study: a study that adds replicates to another
+(`"seeds": [4, ...]`, cases/paper_study_ten.json) gives its runs to the same samples;
+a run id found twice is refused. `--csv DIR` also writes the key-quantity table as
+DIR/paper_study.csv. Every number
 comes from the archive; the paper's from scripts/paper_values.py. scripts/compare.py
 prints every quantity of every run, with the same statistics.
 """
 import argparse
+import contextlib
 import csv
 import datetime
 import os
@@ -187,6 +191,20 @@ def study_hours(runs):
     return (end - start).total_seconds() / 3600.0
 
 
+def every_run(archives):
+    """The runs of every archive, in order; an ArchiveError naming a run id found
+    twice (the same archive given twice, or two studies with a replicate in common)."""
+    runs, seen = [], {}
+    for archive in archives:
+        for r in archive.select():
+            if r.id in seen:
+                raise ArchiveError(f"run {r.id} is in {seen[r.id]} and in {archive.path}: "
+                                   "give each replicate once")
+            seen[r.id] = archive.path
+            runs.append(r)
+    return runs
+
+
 def key_table(groups):
     """(label, [cell per group]) rows and the CSV rows of the key quantities."""
     md, rows = [], []
@@ -209,18 +227,18 @@ def key_table(groups):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("archive")
+    parser.add_argument("archives", nargs="+", metavar="archive")
     parser.add_argument("--csv", metavar="DIR", help="also write DIR/paper_study.csv")
     args = parser.parse_args(argv)
     try:
-        with open_archive(args.archive) as archive:
-            runs = archive.select()
+        with contextlib.ExitStack() as stack:
+            runs = every_run([stack.enter_context(open_archive(a)) for a in args.archives])
             groups = group_runs([r for r in runs if r.loaded])
             print("## Goals\n\n| goal | measured (mean [95 % interval] or per run) | holds |"
                   "\n|---|---|---|")
             for goal, measured, holds in goals(groups):
                 print(f"| {goal} | {measured} | {holds} |")
-            hours = study_hours(runs)
+            hours = study_hours(runs) if len(args.archives) == 1 else None
             if hours is not None:
                 # The span counts every pause (a resumed study, other work on the
                 # cores); the runs' own wall times say what the study needs.

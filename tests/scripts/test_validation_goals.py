@@ -6,6 +6,8 @@ every replicate says how many meet it, and holds only when all do.
 
 Needs no build: the archive is written with h5py by synthetic_archive.py.
 """
+import contextlib
+import io
 import os
 import sys
 import tempfile
@@ -18,7 +20,7 @@ sys.path.insert(0, HERE)
 from ballast_archive import open_archive  # noqa: E402
 from replicates import group_runs  # noqa: E402
 from synthetic_archive import FULL, run, write_study  # noqa: E402
-from validation import goals  # noqa: E402
+from validation import goals, main  # noqa: E402
 
 
 def sample1_runs():
@@ -86,6 +88,45 @@ class Goals(unittest.TestCase):
         measured, holds = self.row("spheres / Sample 1 mean rotation")
         self.assertTrue(measured.startswith("21.0 ["), measured)
         self.assertEqual(holds, "yes")
+
+
+class SeveralArchives(unittest.TestCase):
+    """A study that adds replicates to another: validation.py reads both as one."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        runs = sample1_runs()
+        first = [r for r in runs if r["id"].endswith(("-r1", "-r2"))]
+        more = [r for r in runs if not r["id"].endswith(("-r1", "-r2"))]
+        cls.first = write_study(os.path.join(cls.tmp.name, "first.h5"), first, scene=FULL)
+        cls.more = write_study(os.path.join(cls.tmp.name, "more.h5"), more, scene=FULL)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def report(self, *archives):
+        out, err = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            code = main(list(archives))
+        return code, out.getvalue(), err.getvalue()
+
+    def test_the_replicates_of_both_archives_make_one_sample(self):
+        code, out, _ = self.report(self.first, self.more)
+        self.assertEqual(code, 0)
+        # Sample 1's r1, r2 in the first archive and r3, r4 in the second: n 4, and
+        # the goals count all four (the second sinks on unloading).
+        self.assertIn("T2S1 (n 4)", out)
+        self.assertIn("| T2S1: rebounds in every replicate (resilient settlement > 0) | 3 of 4",
+                      out)
+        # The span of one study's runs means nothing across two studies.
+        self.assertNotIn("fits in one night", out)
+
+    def test_a_run_given_twice_is_refused_by_its_id(self):
+        code, _, err = self.report(self.first, self.first)
+        self.assertEqual(code, 1)
+        self.assertIn("run spheres-r1 is in", err)
 
 
 if __name__ == "__main__":
