@@ -20,19 +20,20 @@ mkdir -p "$dir"
 
 # name scene [--set KEY=VALUE ...]: one per line, in the table's order.
 read -r -d '' trials <<'LIST' || true
-sph_ref spheres.json
-sph_free spheres.json --set /preparation/levelling_pressure=0
-sph_10kPa spheres.json --set /preparation/levelling_pressure=10000
-sph_fric spheres.json --set /preparation/frictionless_settling=false
-sph_base100 spheres.json --set /materials/base_stiffness=2.54e8
-sph_nocreep spheres.json --set /preparation/seating_creep_rule=false
-sph_1Hz spheres.json --set /sleeper/frequency=1
-s1_ref sample1.json
-s1_free sample1.json --set /preparation/levelling_pressure=0 --set /particles/count=1936
-s1_fric sample1.json --set /preparation/frictionless_settling=false
+sph_ref spheres_settle_400k.json
+sph_free spheres_settle_400k.json --set /preparation/levelling_pressure=0
+sph_10kPa spheres_settle_400k.json --set /preparation/levelling_pressure=10000
+sph_fric spheres_settle_400k.json --set /preparation/frictionless_settling=false
+sph_base100 spheres_settle_400k.json --set /materials/base_stiffness=2.54e8
+sph_nocreep spheres_settle_400k.json --set /preparation/seating_creep_rule=false
+sph_1Hz spheres_settle_400k.json --set /sleeper/frequency=1
+s1_ref sample1_settle_400k.json
+s1_free sample1_settle_400k.json --set /preparation/levelling_pressure=0 --set /particles/count=1936
+s1_fric sample1_settle_400k.json --set /preparation/frictionless_settling=false
 LIST
 # What each changes:
-#   ref       the scenes as they are: the levelling plate at the preload's pressure, a
+#   ref       the full-scale scenes with the frictionless settling stopped at 400,000
+#             steps (box_test/*_settle_400k.json): the levelling plate at the preload's pressure, a
 #             frictionless settling, frictional compaction at 10 g, 1 g, friction 0.5
 #   free      no plate: the sleeper goes on the freely settled top (1,936 clumps fill
 #             the box without a plate's compaction, as the paper's count does)

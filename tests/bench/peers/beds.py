@@ -14,7 +14,7 @@ at 10 g and at 1 g to a ratio of 0.005.
 import os
 import subprocess
 
-SCENES = {"spheres": "spheres.json", "sample1": "sample1.json"}
+SCENES = {"spheres": "spheres_settle_400k.json", "sample1": "sample1_settle_400k.json"}
 
 SETTINGS = ["/materials/ball_stiffness=1.016e10", "/materials/wall_stiffness=1.016e10",
             "/materials/base_stiffness=1.016e10", "/materials/friction_loading=0.3",
