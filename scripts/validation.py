@@ -14,9 +14,9 @@ Prints, in Markdown,
 Several archives are read as one study: a study that adds replicates to another
 (`"seeds": [4, ...]`, cases/paper_study_ten.json) gives its runs to the same samples;
 a run id found twice is refused. `--csv DIR` also writes the key-quantity table as
-DIR/paper_study.csv. Every number
-comes from the archive; the paper's from scripts/paper_values.py. scripts/compare.py
-prints every quantity of every run, with the same statistics.
+DIR/paper_study.csv. Every number comes from the archives; the paper's from
+scripts/paper_values.py. scripts/compare.py prints every quantity of every run, with
+the same statistics.
 """
 import argparse
 import contextlib

@@ -32,9 +32,10 @@ s1_free sample1_settle_400k.json --set /preparation/levelling_pressure=0 --set /
 s1_fric sample1_settle_400k.json --set /preparation/frictionless_settling=false
 LIST
 # What each changes:
-#   ref       the full-scale scenes with the frictionless settling stopped at 400,000
-#             steps (box_test/*_settle_400k.json): the levelling plate at the preload's pressure, a
-#             frictionless settling, frictional compaction at 10 g, 1 g, friction 0.5
+#   ref       the full-scale scenes with the frictionless settling stopped at
+#             400,000 steps (box_test/*_settle_400k.json): the levelling plate at the
+#             preload's pressure, a frictionless settling, frictional compaction at
+#             10 g, 1 g, friction 0.5
 #   free      no plate: the sleeper goes on the freely settled top (1,936 clumps fill
 #             the box without a plate's compaction, as the paper's count does)
 #   10kPa     a lighter plate
