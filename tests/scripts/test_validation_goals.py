@@ -23,12 +23,22 @@ from synthetic_archive import FULL, run, write_study  # noqa: E402
 from validation import goals, main  # noqa: E402
 
 
+# A sphere column whose whole porosity is the paper's 0.37, made of layers of 0.45
+# within one diameter (36.25 mm) of the side walls, base and top of a 0.39 m bed in the
+# 0.3 m wide box, and an interior to match: the interior's share of the column is
+# (0.3 − 0.0725)(0.39 − 0.0725) / (0.3 × 0.39).
+SPHERE_BED, SPHERE_WALLS = 0.39, 0.45
+SPHERE_SHARE = (0.3 - 0.0725) * (SPHERE_BED - 0.0725) / (0.3 * SPHERE_BED)
+SPHERE_INTERIOR = (0.37 - (1.0 - SPHERE_SHARE) * SPHERE_WALLS) / SPHERE_SHARE
+
+
 def sample1_runs():
     """Four Sample 1 replicates: the second sinks on unloading (resilient settlement
     < 0), the third's cycle maximum exceeds its loading maximum, the fourth creeps
     under the preload. Two sphere replicates give the rotation ratio its numerator."""
     runs = [run(f"spheres-r{k + 1}", "spheres", "spheres", k + 1, bodies=1936,
-                rotation_loading_mean_deg=1.0 + 0.1 * k) for k in range(2)]
+                rotation_loading_mean_deg=1.0 + 0.1 * k, bed_height=SPHERE_BED,
+                porosity_grid=0.37, porosity_grid_interior=SPHERE_INTERIOR) for k in range(2)]
     resilient = (9e-6, -2e-6, 1.1e-5, 8e-6)
     cycle_max = (0.40, 0.45, 7.70, 2.00)
     seating = ("equilibrium", "equilibrium", "equilibrium", "steady creep")
@@ -82,6 +92,15 @@ class Goals(unittest.TestCase):
         measured, holds = self.row("T2S1: sleeper on ≥ 20 particles")
         self.assertTrue(measured.startswith("0 of 4 meet it: 7 / "), measured)
         self.assertEqual(holds, "no")
+
+    def test_porosity_splits_the_column_into_interior_and_wall_layers(self):
+        # The whole column is at the paper's 0.37 already: the wall layers come out as
+        # built, and the interior the paper's porosity needs is the one the column has.
+        measured, holds = self.row("spheres: porosity within ±0.03 of 0.37")
+        self.assertTrue(measured.startswith("0.370 ["), measured)
+        self.assertIn(f"the layers left out {SPHERE_WALLS:.3f} [", measured)
+        self.assertIn(f"0.37 needs an interior of {SPHERE_INTERIOR:.3f} [", measured)
+        self.assertEqual(holds, "yes")
 
     def test_ratio_of_mean_rotations(self):
         # spheres 1.05 over Sample 1 0.05: 21, at or above the goal's 20.
