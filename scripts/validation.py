@@ -167,8 +167,9 @@ def goals(groups):
                 # What the interior would need for the whole column to reach the
                 # paper's porosity, with the wall layers as they are.
                 t = table_of(g)
-                need = summarize([(p - (1.0 - interior_share(x)) * t[x.id]["porosity_grid_walls"])
-                                  / interior_share(x) for x in g.runs])
+                split = [(interior_share(x), t[x.id].get("porosity_grid_walls")) for x in g.runs]
+                need = summarize([(p - (1.0 - share) * w) / share for share, w in split
+                                  if share is not None and w is not None])
                 measured += (f"; the layers left out {interval(walls, '{:.3f}')}, with which "
                              f"{p} needs an interior of {interval(need, '{:.3f}')}")
             rows.append((f"{g.name}: porosity within ±0.03 of {p}", measured,
