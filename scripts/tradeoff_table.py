@@ -205,10 +205,40 @@ def write_csv(path, reference, variants, table):
                           for k, _, _ in QUANTITIES for x in errors[k]])
 
 
-def pareto_plot(path, reference, variants, table, marks):
+def place_labels(ax, points, fontsize=7):
+    """Each label beside its point, moved down a line at a time until it clears the
+    markers and the labels already placed (display pixels, y up; a label's width
+    estimated from its length), so that variants of nearly the same cost and error
+    stay readable."""
+    px = ax.figure.dpi / 72.0  # pixels per point
+    line, char, half = 1.2 * fontsize * px, 0.6 * fontsize * px, 4 * px
+
+    def clear(box, others):
+        x0, x1, y0, y1 = box
+        return all(x1 <= a0 or a1 <= x0 or y1 <= b0 or b1 <= y0 for a0, a1, b0, b1 in others)
+
+    taken = [(mx - half, mx + half, my - half, my + half)
+             for mx, my in (ax.transData.transform(xy) for xy, _ in points)]
+    for (x, y), text in sorted(points, key=lambda p: (p[0][0], -p[0][1])):
+        x0, y0 = ax.transData.transform((x, y))
+        dy = 3.0 * px
+        box = lambda: (x0 + 4 * px, x0 + 4 * px + len(text) * char, y0 + dy, y0 + dy + line)
+        while not clear(box(), taken):
+            dy -= line
+        taken.append(box())
+        ax.annotate(text, (x, y), textcoords="offset points", xytext=(4, dy / px),
+                    fontsize=fontsize)
+
+
+def pareto_plot(path, reference, variants, table, marks, other=None, names=("", "")):
+    """Cost against worst error, one point per variant. With `other`, the errors in the
+    other scatter, a hollow marker joined to each point gives the variant's worst error
+    measured in that one: three seeds of the reference can under- or overstate the
+    scatter. `names`: the two scatters' names, the table's first."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
     fig, ax = plt.subplots(figsize=(7.5, 5))
     # Variants that give the same bits (a preset that only sets a knob's value) share
     # a point and one label, "a = b", instead of two labels printed over each other.
@@ -220,24 +250,36 @@ def pareto_plot(path, reference, variants, table, marks):
         if w is None:
             continue
         x, star = v.ball_steps / reference.ball_steps, v.name in marks.values()
-        ax.scatter([x], [max(w, 1e-2)], marker="*" if star else "o", s=160 if star else 30,
-                   color="tab:red" if star else "tab:blue", zorder=3)
+        y, color = max(w, 1e-2), "tab:red" if star else "tab:blue"
+        ax.scatter([x], [y], marker="*" if star else "o", s=160 if star else 30,
+                   color=color, zorder=3)
+        w_other = worst(other[v.name]) if other is not None else None
+        if w_other is not None:
+            ax.plot([x, x], [y, max(w_other, 1e-2)], color=color, lw=0.8, alpha=0.5)
+            ax.scatter([x], [max(w_other, 1e-2)], s=30, facecolors="none", edgecolors=color,
+                       zorder=3)
         label = next((p for p, n in marks.items() if n == v.name), v.name)
-        points.setdefault((x, max(w, 1e-2)), []).append(label)
-    for xy, labels in points.items():
-        ax.annotate(" = ".join(labels), xy, textcoords="offset points", xytext=(4, 3),
-                    fontsize=7)
+        points.setdefault((x, y), []).append(label)
     ax.axhline(1.0, color="grey", ls="--", lw=1)
-    ax.text(ax.get_xlim()[0], 1.03, " the reference's seed-to-seed scatter", fontsize=7,
-            color="grey", va="bottom")
     ax.set_xscale("log")
     ax.set_yscale("log")
+    left, right = ax.get_xlim()
+    ax.set_xlim(left, right * 1.25)  # room for the rightmost point's label
+    ax.text(left, 1.03, " the seed-to-seed scatter", fontsize=7, color="grey",
+            va="bottom")
+    if other is not None:
+        ax.legend(handles=[Line2D([], [], ls="", marker="o", color="tab:blue",
+                                  label=f"in the {names[0]} scatter"),
+                           Line2D([], [], ls="", marker="o", markerfacecolor="none",
+                                  color="tab:blue", label=f"in the {names[1]} scatter")],
+                  fontsize=7, loc="lower right")
     ax.set_xlabel("cost: ball-steps per run, relative to the reference "
                   "(exact; wall time in the table)")
     ax.set_ylabel("worst error over the quantities, |Δ| / scatter")
     ax.set_title(f"Speed against accuracy, {reference.balls:,.0f}-ball box test, "
                  f"{reference.runs} common seeds", fontsize=10)
     fig.tight_layout()
+    place_labels(ax, [(xy, " = ".join(labels)) for xy, labels in points.items()])
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
@@ -275,7 +317,10 @@ def main(argv=None):
         with open(os.path.join(a.out, "tradeoff.md"), "w") as f:
             f.write(text + "\n")
         write_csv(os.path.join(a.out, "tradeoff.csv"), reference, variants, table)
-        pareto_plot(os.path.join(a.out, "pareto.png"), reference, variants, table, marks)
+        spoken = {"reference": "reference's", "pooled": "pooled"}
+        other_name = "pooled" if a.scatter == "reference" else "reference"
+        pareto_plot(os.path.join(a.out, "pareto.png"), reference, variants, table, marks,
+                    other, (spoken[a.scatter], spoken[other_name]))
     return 0
 
 
