@@ -101,6 +101,29 @@ class TradeoffTable(unittest.TestCase):
         self.assertIn("| near | 3 | 1.00 | 1.00 |", md)
         self.assertTrue(os.path.getsize(os.path.join(self.out, "pareto.png")) > 1000)
 
+    def test_labels_of_nearby_points_do_not_overlap(self):
+        # Three variants a hair apart in cost and error, as frequency-10 and balanced
+        # were in the full-scale spheres' plot: every label must clear the others and
+        # every marker but its own.
+        sys.path.insert(0, os.path.dirname(SCRIPT))
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        from tradeoff_table import place_labels
+        fig, ax = plt.subplots(figsize=(7.5, 5))
+        xy = [(0.70, 30.0), (0.72, 31.0), (0.71, 29.5), (0.30, 60.0)]
+        ax.scatter(*zip(*xy))
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        place_labels(ax, [(p, f"variant-{k}") for k, p in enumerate(xy)])
+        fig.canvas.draw()
+        boxes = [t.get_window_extent() for t in ax.texts]
+        plt.close(fig)
+        self.assertEqual(len(boxes), 4)
+        for i in range(4):
+            for j in range(i + 1, 4):
+                self.assertFalse(boxes[i].overlaps(boxes[j]), (i, j, boxes[i], boxes[j]))
+
     def test_archives_pool_their_samples_and_refuse_a_sample_twice(self):
         extra = write_study(os.path.join(self.tmp.name, "extra.h5"), runs("late", [1.4, 1.6]))
         out = os.path.join(self.tmp.name, "pooled")
