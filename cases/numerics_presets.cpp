@@ -22,8 +22,9 @@ constexpr PresetField kPaper[] = {
 // numerics knob whose errors stay within the reference's seed-to-seed scatter in
 // docs/TRADEOFFS.md's smoke table (0.88 of the ball-steps). The clump mass mode "sum"
 // saves a further 0.1 but moves the largest rotation and displacement by 16 to 18
-// scatters there, so it is left to "fast". At full scale dt_safety 1 halves Sample 1's
-// settlement and rotation (docs/TRADEOFFS.md): cheaper, not free.
+// scatters there, so it is left to "fast". At full scale, on beds settled to rest,
+// dt_safety 1 lowers Sample 1's settlement and rotation by about a quarter and raises
+// the spheres' (docs/TRADEOFFS.md): cheaper, not free.
 constexpr PresetField kBalanced[] = {
     {"/numerics/dt_safety", "1.0"},
 };
@@ -32,8 +33,8 @@ constexpr PresetField kBalanced[] = {
 // weakened as much (PFC users' mass scaling: weights stay, the critical step grows by
 // sqrt(10)). Scaling the density alone would make the bed weigh ten times as much (its
 // mean contact force doubles in docs/TRADEOFFS.md's table). Mass scaling acts as a
-// faster load, and at full scale the clumps then turn four times less: fit for
-// porosity and rebound.
+// faster load, and at full scale the clumps then turn half as much on beds settled
+// to rest (a quarter on beds stopped short): fit for porosity and rebound.
 constexpr PresetField kFast[] = {
     {"/numerics/dt_safety", "1.0"},
     {"/particles/mass_mode", "\"sum\""},
