@@ -103,8 +103,7 @@ class TradeoffTable(unittest.TestCase):
 
     def test_labels_of_nearby_points_do_not_overlap(self):
         # Three variants a hair apart in cost and error, as frequency-10 and balanced
-        # were in the full-scale spheres' plot: every label must clear the others and
-        # every marker but its own.
+        # were in the full-scale spheres' plot: every drawn label must clear the others.
         sys.path.insert(0, os.path.dirname(SCRIPT))
         import matplotlib
         matplotlib.use("Agg")
