@@ -8,6 +8,7 @@
 #include <limits>
 #include <ostream>
 #include <stdexcept>
+#include <string>
 
 #include "cases/box_test_checkpoint.hpp"
 #include "cases/box_test_zones.hpp"
@@ -30,6 +31,9 @@ constexpr double kDeg = 180.0 / kPi;
 // 0.27 %; on the smoke and full-scale scenes 0.006-0.014 %; at a fixed dt of twice the
 // critical estimate, 56 % (docs/ACCURACY.md).
 constexpr double kMaxCycleEnergyError = 0.05;
+
+// s: how often a run of many cycles logs its progress.
+constexpr double kProgressSeconds = 60.0;
 
 // Throws SimulationError when the cycle's budget does not close, naming the timestep
 // against its critical estimate, the knob that breaks it.
@@ -169,6 +173,36 @@ CycleLoop seat_sleeper(const BoxTestScene& s, Simulation& sim, BoxTestResult& ou
   return loop;
 }
 
+// "42 s", "17 min" or "8.3 h": a duration for a person reading a log.
+std::string duration_text(double seconds) {
+  char text[32];
+  if (seconds < 120.0)
+    std::snprintf(text, sizeof text, "%.0f s", seconds);
+  else if (seconds < 7200.0)
+    std::snprintf(text, sizeof text, "%.0f min", seconds / 60.0);
+  else
+    std::snprintf(text, sizeof text, "%.1f h", seconds / 3600.0);
+  return text;
+}
+
+// One line on the cycle that just ended, for a run of many: where the settlement
+// stands and when the run will end, at the rate of the cycles this process has run.
+void log_cycle_progress(std::ostream& log, const BoxTestScene& s, const CycleRecords& records,
+                        long cycles_this_process, double seconds_this_process) {
+  const std::size_t n = records.count();
+  const double per_cycle = seconds_this_process / static_cast<double>(cycles_this_process);
+  const double rebound = records.settlement_peak[n - 1] - records.settlement_trough[n - 1];
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "  cycle %zu of %ld: permanent settlement %.4g mm, rebound %.4g mm; %.3g s a cycle",
+                n, s.cycles, records.settlement_trough[n - 1] * 1e3, rebound * 1e3, per_cycle);
+  log << line;
+  if (static_cast<long>(n) < s.cycles)
+    log << ", " << duration_text(per_cycle * static_cast<double>(s.cycles - static_cast<long>(n)))
+        << " to go";
+  log << '\n' << std::flush;
+}
+
 // Stage 4's cycles, from wherever `loop` stands (the start of loading, or a
 // checkpoint: `resumed`), writing checkpoints as `plan` asks; then what the cycles
 // measured. run_start: when this process started the run.
@@ -178,7 +212,8 @@ void run_cycles(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, Cycl
                 bool resumed) {
   const Clock::time_point start = Clock::now();
   const double loop_before = loop.seconds, run_before = loop.run_seconds;
-  Clock::time_point last_checkpoint = start;
+  Clock::time_point last_checkpoint = start, last_progress = start;
+  const long done_at_start = loop.cycles.cycles_done();
   const auto checkpoint = [&] {
     CycleLoop at = loop;
     at.seconds = loop_before + seconds_since(start);
@@ -218,8 +253,14 @@ void run_cycles(const BoxTestScene& s, Simulation& sim, BoxTestResult& out, Cycl
     }
     const long done = loop.cycles.cycles_done();
     loop.cycles.after_step(sim, out.cycles);
-    if (!checkpoints || sim.time() >= loop.t_end) continue;
     const bool cycle_ended = loop.cycles.cycles_done() != done;
+    // A run of many cycles says how it goes about once a minute, and at its last cycle.
+    if (cycle_ended && log && s.cycles > 1 &&
+        (seconds_since(last_progress) >= kProgressSeconds || done + 1 == s.cycles)) {
+      log_cycle_progress(*log, s, out.cycles, done + 1 - done_at_start, seconds_since(start));
+      last_progress = Clock::now();
+    }
+    if (!checkpoints || sim.time() >= loop.t_end) continue;
     if ((cycle_ended && plan.every_cycles > 0 &&
          loop.cycles.cycles_done() % plan.every_cycles == 0) ||
         (plan.every_minutes > 0.0 && (sim.step_count() & 255) == 0 &&

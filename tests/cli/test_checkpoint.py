@@ -66,7 +66,8 @@ class Checkpoints(unittest.TestCase):
     def setUpClass(cls):
         cls.tmp = tempfile.TemporaryDirectory()
         cls.reference = os.path.join(cls.tmp.name, "reference.h5")
-        succeed("run", TINY, *CYCLES, "--checkpoint-minutes", "0", "-o", cls.reference)
+        cls.reference_log = succeed("run", TINY, *CYCLES, "--checkpoint-minutes", "0", "-o",
+                                    cls.reference).stdout
 
     @classmethod
     def tearDownClass(cls):
@@ -74,6 +75,20 @@ class Checkpoints(unittest.TestCase):
 
     def path(self, name):
         return os.path.join(self.tmp.name, name)
+
+    def test_the_last_cycle_is_logged_with_the_archives_settlement_and_rebound(self):
+        # A run of many cycles logs its progress about once a minute and always after
+        # its last cycle, in mm, to 4 significant digits.
+        m = re.search(r"cycle 20 of 20: permanent settlement (\S+) mm, rebound (\S+) mm; "
+                      r"(\S+) s a cycle\n", self.reference_log)
+        self.assertIsNotNone(m, self.reference_log[-2000:])
+        with h5py.File(self.reference, "r") as f:
+            trough = f["run/cycles/settlement_trough"][-1] * 1e3
+            peak = f["run/cycles/settlement_peak"][-1] * 1e3
+        self.assertNotAlmostEqual(trough, 0.0, places=3)
+        self.assertAlmostEqual(float(m.group(1)) / trough, 1.0, delta=1e-3)
+        self.assertAlmostEqual(float(m.group(2)) / (peak - trough), 1.0, delta=1e-3)
+        self.assertGreater(float(m.group(3)), 0.0)
 
     def test_killed_three_times_then_resumed_gives_the_same_archive(self):
         out = self.path("killed.h5")
