@@ -8,7 +8,7 @@ the reference, beside the reference's seed-to-seed scatter.
 The archives are studies whose samples are a reference and variants of it, run on
 common seeds (`"common_seeds": true`) from one study seed, so that replicate k of
 every variant starts from the reference's replicate k, whichever archive holds it
-(cases/tradeoff_study.json and cases/tradeoff_presets.json). A sample name may appear
+(cases/tradeoff_study.json and cases/tradeoff_extended.json). A sample name may appear
 in one archive only. For each variant and each
 quantity q of QUANTITIES:
 

@@ -30,6 +30,7 @@ from binary import ballast  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "..", "data", "study")
+CASES = os.path.join(HERE, "..", "..", "cases")
 MIXED = os.path.join(DATA, "mixed.json")
 TINY = os.path.join(DATA, "tiny.json")
 IDS = ["spheres-r1", "huge-r1", "spheres_dt-r1", "T2S1-r1"]
@@ -450,6 +451,36 @@ class Refusals(unittest.TestCase):
         self.assertIn("nothing run or written", r.stdout)
         self.assertFalse(os.path.exists(path))
         self.assertFalse(os.path.exists(path + ".parts"))
+
+    def test_every_shipped_study_passes_its_dry_run(self):
+        studies = sorted(f for f in os.listdir(CASES) if f.endswith(".json"))
+        self.assertIn("default_study.json", studies)
+        for name in studies:
+            with self.subTest(study=name):
+                r = study(os.path.join(CASES, name), "-o", os.path.join(scratch(), "dry.h5"),
+                          "--dry-run")
+                self.assertEqual(r.returncode, 0, r.stderr)
+                self.assertIn("nothing run or written", r.stdout)
+
+    def test_a_trade_companion_study_runs_on_its_references_seeds(self):
+        # scripts/tradeoff_table.py compares replicate k of a variant in the companion
+        # study with replicate k of the reference in the main one: the same bed only
+        # if both studies give replicate k the same seed.
+        def seeds(name):
+            r = study(os.path.join(CASES, name), "-o", os.path.join(scratch(), "d.h5"),
+                      "--dry-run")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            return dict(re.findall(r"^\s+\d+\s+(\S+)\s+seed (\d+)", r.stdout, re.M))
+
+        for companion, main in [("tradeoff_extended.json", "tradeoff_study.json"),
+                                ("tradeoff_spheres_extended.json", "tradeoff_spheres.json"),
+                                ("tradeoff_full_cycles.json", "tradeoff_full.json")]:
+            with self.subTest(companion=companion):
+                reference, variants = seeds(main), seeds(companion)
+                self.assertTrue(variants)
+                for run_id, seed in variants.items():
+                    replicate = run_id.rsplit("-", 1)[1]
+                    self.assertEqual(seed, reference[f"reference-{replicate}"], run_id)
 
     def test_an_existing_archive_without_resume(self):
         path, before = self.copy_of_reference()
