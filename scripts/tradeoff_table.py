@@ -155,9 +155,14 @@ def fmt_error(e):
     return "–" if e is None else f"{e:.2f}"
 
 
+def other_scatter(name):
+    """The scatter a table is not measured in: "pooled" for "reference" and back."""
+    return "pooled" if name == "reference" else "reference"
+
+
 def markdown(reference, variants, table, pooled, scatter_name, other):
     """`other` is the table in the other scatter, whose worst error gets a column."""
-    other_name = "pooled" if scatter_name == "reference" else "reference"
+    other_name = other_scatter(scatter_name)
     lines = ["| variant | runs | ball-steps (× ref) | wall (× ref) | "
              + " | ".join(SHORT) + f" | worst | noise | within scatter | worst, {other_name} |",
              "|---" * (len(SHORT) + 8) + "|"]
@@ -205,11 +210,11 @@ def write_csv(path, reference, variants, table):
                           for k, _, _ in QUANTITIES for x in errors[k]])
 
 
-def place_labels(ax, points, fontsize=7):
+def place_labels(ax, points, obstacles=(), fontsize=7):
     """Each label beside its point, moved down a line at a time until it clears the
-    markers and the labels already placed (display pixels, y up; a label's width
-    estimated from its length), so that variants of nearly the same cost and error
-    stay readable."""
+    markers (the points' and the `obstacles`, data coordinates) and the labels already
+    placed (display pixels, y up; a label's width estimated from its length), so that
+    variants of nearly the same cost and error stay readable."""
     px = ax.figure.dpi / 72.0  # pixels per point
     line, char, half = 1.2 * fontsize * px, 0.6 * fontsize * px, 4 * px
 
@@ -217,8 +222,9 @@ def place_labels(ax, points, fontsize=7):
         x0, x1, y0, y1 = box
         return all(x1 <= a0 or a1 <= x0 or y1 <= b0 or b1 <= y0 for a0, a1, b0, b1 in others)
 
+    markers = [xy for xy, _ in points] + list(obstacles)
     taken = [(mx - half, mx + half, my - half, my + half)
-             for mx, my in (ax.transData.transform(xy) for xy, _ in points)]
+             for mx, my in (ax.transData.transform(xy) for xy in markers)]
     for (x, y), text in sorted(points, key=lambda p: (p[0][0], -p[0][1])):
         x0, y0 = ax.transData.transform((x, y))
         dy = 3.0 * px
@@ -242,7 +248,7 @@ def pareto_plot(path, reference, variants, table, marks, other=None, names=("", 
     fig, ax = plt.subplots(figsize=(7.5, 5))
     # Variants that give the same bits (a preset that only sets a knob's value) share
     # a point and one label, "a = b", instead of two labels printed over each other.
-    points = {}
+    points, hollow = {}, []
     for v in variants:
         if v is reference:
             continue
@@ -258,6 +264,7 @@ def pareto_plot(path, reference, variants, table, marks, other=None, names=("", 
             ax.plot([x, x], [y, max(w_other, 1e-2)], color=color, lw=0.8, alpha=0.5)
             ax.scatter([x], [max(w_other, 1e-2)], s=30, facecolors="none", edgecolors=color,
                        zorder=3)
+            hollow.append((x, max(w_other, 1e-2)))
         label = next((p for p, n in marks.items() if n == v.name), v.name)
         points.setdefault((x, y), []).append(label)
     ax.axhline(1.0, color="grey", ls="--", lw=1)
@@ -279,7 +286,7 @@ def pareto_plot(path, reference, variants, table, marks, other=None, names=("", 
     ax.set_title(f"Speed against accuracy, {reference.balls:,.0f}-ball box test, "
                  f"{reference.runs} common seeds", fontsize=10)
     fig.tight_layout()
-    place_labels(ax, [(xy, " = ".join(labels)) for xy, labels in points.items()])
+    place_labels(ax, [(xy, " = ".join(labels)) for xy, labels in points.items()], hollow)
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
@@ -318,9 +325,8 @@ def main(argv=None):
             f.write(text + "\n")
         write_csv(os.path.join(a.out, "tradeoff.csv"), reference, variants, table)
         spoken = {"reference": "reference's", "pooled": "pooled"}
-        other_name = "pooled" if a.scatter == "reference" else "reference"
         pareto_plot(os.path.join(a.out, "pareto.png"), reference, variants, table, marks,
-                    other, (spoken[a.scatter], spoken[other_name]))
+                    other, (spoken[a.scatter], spoken[other_scatter(a.scatter)]))
     return 0
 
 

@@ -123,6 +123,36 @@ class TradeoffTable(unittest.TestCase):
             for j in range(i + 1, 4):
                 self.assertFalse(boxes[i].overlaps(boxes[j]), (i, j, boxes[i], boxes[j]))
 
+    def test_a_label_clears_the_hollow_markers_it_is_given(self):
+        # A hollow marker (another variant's error in the other scatter) where a label
+        # would go, as mass_scale-10's was under mass_scale-10_frequency-10's label in
+        # the full-scale plot: given as an obstacle, the label moves off it.
+        sys.path.insert(0, os.path.dirname(SCRIPT))
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        from tradeoff_table import place_labels
+
+        def label_box(obstacles):
+            fig, ax = plt.subplots(figsize=(7.5, 5))
+            ax.scatter([0.3, 0.9], [1.0, 60.0])
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            x0, y0 = ax.transData.transform((0.5, 10.0))
+            marker = (x0 + 30, y0 + 8)  # display pixels: on the label's first place
+            hollow = tuple(ax.transData.inverted().transform(marker))
+            place_labels(ax, [((0.5, 10.0), "a-long-variant-name")],
+                         [hollow] if obstacles else [])
+            fig.canvas.draw()
+            box, half = ax.texts[0].get_window_extent(), 4 * fig.dpi / 72.0
+            plt.close(fig)
+            mx, my = marker
+            return box.x0 < mx + half and mx - half < box.x1 and box.y0 < my + half and \
+                my - half < box.y1
+
+        self.assertTrue(label_box(obstacles=False), "the test's marker is not in the way")
+        self.assertFalse(label_box(obstacles=True))
+
     def test_archives_pool_their_samples_and_refuse_a_sample_twice(self):
         extra = write_study(os.path.join(self.tmp.name, "extra.h5"), runs("late", [1.4, 1.6]))
         out = os.path.join(self.tmp.name, "pooled")
