@@ -8,12 +8,12 @@
 #include <limits>
 #include <ostream>
 #include <stdexcept>
-#include <string>
 
 #include "cases/box_test_checkpoint.hpp"
 #include "cases/box_test_zones.hpp"
 #include "cases/contact_census.hpp"
 #include "cases/cycle_recorder.hpp"
+#include "cases/duration_text.hpp"
 #include "engine/clump_shape.hpp"
 #include "engine/errors.hpp"
 #include "engine/porosity.hpp"
@@ -171,18 +171,6 @@ CycleLoop seat_sleeper(const BoxTestScene& s, Simulation& sim, BoxTestResult& ou
   loop.energy0 = sim.energy();
   loop.cycles = CycleRecorder(s, sim, wall, loop.servo, loop.x0, loop.x1);
   return loop;
-}
-
-// "42 s", "17 min" or "8.3 h": a duration for a person reading a log.
-std::string duration_text(double seconds) {
-  char text[32];
-  if (seconds < 120.0)
-    std::snprintf(text, sizeof text, "%.0f s", seconds);
-  else if (seconds < 7200.0)
-    std::snprintf(text, sizeof text, "%.0f min", seconds / 60.0);
-  else
-    std::snprintf(text, sizeof text, "%.1f h", seconds / 3600.0);
-  return text;
 }
 
 // One line on the cycle that just ended, for a run of many: where the settlement

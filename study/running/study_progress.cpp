@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cases/duration_text.hpp"
 #include "study/running/run_log.hpp"
 
 namespace ballast {
@@ -30,17 +31,6 @@ std::string stage_label(const std::string& stage) {
 ProgressBoard::ProgressBoard(std::ostream& out, bool live, std::size_t to_do, std::size_t done,
                              int jobs)
     : out_(out), live_(live), to_do_(to_do), done_before_(done), jobs_(std::max(jobs, 1)) {}
-
-std::string ProgressBoard::duration_text(double seconds) {
-  const long s = std::lround(std::max(seconds, 0.0));
-  char text[32];
-  if (s < 3600) {
-    std::snprintf(text, sizeof text, "%ld:%02ld", s / 60, s % 60);
-  } else {
-    std::snprintf(text, sizeof text, "%ld h %02ld min", s / 3600, (s % 3600) / 60);
-  }
-  return text;
-}
 
 // Mean wall time of the runs finished so far, for every run not finished: those not
 // started in full, those in flight for what they have left, shared among the jobs.

@@ -32,9 +32,6 @@ class ProgressBoard {
   void close();
   std::size_t in_flight() const;
 
-  // "1:05", "2 h 03 min"; for ETAs and wall times.
-  static std::string duration_text(double seconds);
-
  private:
   struct Active {
     std::chrono::steady_clock::time_point start;
