@@ -21,7 +21,9 @@ Then the sample-level tables of scripts/compare_samples.py: replicates' means wi
 intervals (when a sample has two runs or more), the spheres / clumps ratios, and the
 directions in which the top layer moves (archives with zones/). Runs of several load
 cycles add the settlement after the first cycle and its growth per decade of cycles
-(least squares on log10 N; the permanent settlement row is after the last cycle).
+(least squares on log10 N; the permanent settlement row is after the last cycle), and
+per whole decade of cycles reached (1–10, 10–100, ...) the settlement at its end, the
+decade's own slope and its mean rebound.
 Fields that newer archives add (force percentiles, the sleeper's contacts, zones, near contacts) are
 rows where present and left out where not. `--json` prints the same numbers,
 unrounded, for scripts (keys: docs/FIGURES.md).
@@ -180,13 +182,41 @@ def cycle_rows(run):
     count = run.optional("count", "cycles")
     if count is None or int(count) < 2:
         return []
-    first = float(run.data("cycles/settlement_trough")[0])
-    return [("cycles", "load cycles", int(count), None, "{:,.0f}"),
+    trough = [float(x) for x in run.data("cycles/settlement_trough")]
+    rows = [("cycles", "load cycles", int(count), None, "{:,.0f}"),
             ("permanent_settlement_first_mm", "permanent settlement after the first cycle (mm)",
-             first * MM, None, "{:.3g}"),
+             trough[0] * MM, None, "{:.3g}"),
             ("settlement_log_slope_mm", "permanent settlement per decade of cycles (mm, least "
              "squares on log10 N)", float(run.attribute("settlement_log_slope", "cycles")) * MM,
              None, "{:.3g}")]
+    return rows + decade_rows(trough, [float(x) for x in run.data("cycles/resilient_settlement")])
+
+
+def decade_rows(trough, rebound):
+    """Per whole decade of cycles [10^k, 10^(k+1)] the run reached: the permanent
+    settlement at its end, its own least-squares slope on log10 N (one slope over all
+    cycles hides a growth that is not linear in log N: the fit is dominated by the last
+    decade's many cycles) and the mean rebound (resilient settlement) over its cycles.
+    Cycle N is trough[N - 1]."""
+    rows = []
+    lo = 1
+    while lo * 10 <= len(trough):
+        hi = lo * 10
+        xs = [math.log10(n) for n in range(lo, hi + 1)]
+        ys = trough[lo - 1:hi]
+        mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+        slope = (sum((x - mx) * (y - my) for x, y in zip(xs, ys)) /
+                 sum((x - mx) ** 2 for x in xs))
+        span_text = f"cycles {lo:,}–{hi:,}"
+        rows += [(f"permanent_settlement_after_{hi}_mm",
+                  f"permanent settlement after {hi:,} cycles (mm)", ys[-1] * MM, None, "{:.3g}"),
+                 (f"settlement_log_slope_{lo}_{hi}_mm",
+                  f"permanent settlement per decade, {span_text} (mm, least squares on log10 N)",
+                  slope * MM, None, "{:.3g}"),
+                 (f"rebound_mean_{lo}_{hi}_mm", f"mean rebound, {span_text} (mm)",
+                  sum(rebound[lo - 1:hi]) / (hi - lo + 1) * MM, None, "{:.3g}")]
+        lo = hi
+    return rows
 
 
 def cell(value, paper, fmt):

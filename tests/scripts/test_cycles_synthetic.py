@@ -44,6 +44,15 @@ def runs():
     return out + [run("T2S2-r1", "T2S2", "table2/sample2", cycles=([3e-4], [1e-5]))]
 
 
+def bent_law():
+    """(trough, resilient) over 100 cycles that settle 0.1 mm per decade up to cycle 10
+    and 0.5 mm per decade after it (continuous at 10), rebounding 0.01 mm a cycle up to
+    cycle 10 and 0.03 mm after it."""
+    log_n = np.log10(N)
+    trough = 1e-4 + np.where(N <= 10, 1e-4 * log_n, 1e-4 + 5e-4 * (log_n - 1.0))
+    return trough, np.where(N <= 10, 1e-5, 3e-5)
+
+
 def script(name, *args):
     return subprocess.run(["/usr/bin/python3", os.path.join(SCRIPTS, name), *args],
                           capture_output=True, text=True, timeout=300)
@@ -56,6 +65,8 @@ class Cycles(unittest.TestCase):
         cls.archive = write_study(os.path.join(cls.tmp.name, "cycles.h5"), runs())
         cls.plain = write_study(os.path.join(cls.tmp.name, "plain.h5"),
                                 [run("spheres-r1", "spheres", "spheres")])
+        cls.bent = write_study(os.path.join(cls.tmp.name, "bent.h5"),
+                               [run("T2S1-r1", "T2S1", "table2/sample1", cycles=bent_law())])
 
     @classmethod
     def tearDownClass(cls):
@@ -80,6 +91,22 @@ class Cycles(unittest.TestCase):
         self.assertEqual(samples["spheres"]["cycles"]["mean"], 100)
         # A single cycle has no slope to report.
         self.assertNotIn("settlement_log_slope_mm", samples["T2S2"])
+
+    def test_compare_gives_each_decade_its_own_slope_settlement_and_rebound(self):
+        r = script("compare.py", self.bent, "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        q = json.loads(r.stdout)["runs"][0]["quantities"]
+        value = {k: v["ours"] for k, v in q.items()}
+        self.assertAlmostEqual(value["settlement_log_slope_1_10_mm"], 0.1, places=12)
+        self.assertAlmostEqual(value["settlement_log_slope_10_100_mm"], 0.5, places=12)
+        self.assertAlmostEqual(value["permanent_settlement_after_10_mm"], 0.2, places=12)
+        self.assertAlmostEqual(value["permanent_settlement_after_100_mm"], 0.7, places=12)
+        # Each decade's cycles, both ends included: cycle 10 is 0.01 mm, 11–100 are 0.03.
+        self.assertAlmostEqual(value["rebound_mean_1_10_mm"], 0.01, places=12)
+        self.assertAlmostEqual(value["rebound_mean_10_100_mm"], (0.01 + 90 * 0.03) / 91,
+                               places=12)
+        # No third decade in 100 cycles.
+        self.assertNotIn("permanent_settlement_after_1000_mm", value)
 
     def test_a_run_of_one_cycle_has_no_cycle_rows(self):
         r = script("compare.py", self.plain)
