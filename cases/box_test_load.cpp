@@ -8,6 +8,7 @@
 #include <limits>
 #include <ostream>
 #include <stdexcept>
+#include <string>
 
 #include "cases/box_test_checkpoint.hpp"
 #include "cases/box_test_zones.hpp"

@@ -1,7 +1,6 @@
 #include "study/running/study_progress.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 
 #include "cases/duration_text.hpp"
