@@ -7,6 +7,7 @@
 
 #include "engine/contact_laws.hpp"
 #include "engine/sphere_kernel.hpp"
+#include "engine/sphere_planes.hpp"
 #include "engine/work_split.hpp"
 
 namespace ballast {
@@ -261,14 +262,25 @@ void sphere_pass_simd(const BallStore& ball_store, const BodyStore& body_store,
   k.a_side = a_side_store.empty() ? nullptr : a_side_store.data()->force.data();
   sphere_kernel_ball_ball(k, lo, hi, s.sphere_kernel_lanes);
   if (wc_list.size() == 0) return;
+  const Index* const wall_a = wc_list.a.data();
+  const Index first = wc_list.a_first[lo], last = wc_list.a_first[hi];
+  // The plane walls' candidates go through the kernel, then the others' (the sleeper's
+  // box) through the loop below (sphere_planes.hpp says when that keeps the order).
+  const PlaneTable planes = plane_table(walls);
+  if (planes.planes_in_lanes) {
+    const SpherePlaneView p = sphere_plane_view(k, planes, pairs, wc_list, s.ledger);
+    sphere_kernel_ball_plane(p, first, last, s.sphere_kernel_lanes);
+    if (!planes.other_shapes) return;
+  }
   const BallView balls = view(ball_store);
   const BodyView bodies = view(body_store);
   const ContactView wc = view(wc_list);
   // One loop over the share's wall candidates, not over its balls: most balls touch
   // no wall, and a loop per ball that mostly runs no iteration mispredicts.
   Wrench* const a_side = a_side_store.data();
-  const Index* const wall_a = wc_list.a.data();
-  for (Index c = wc.a_first[lo]; c < wc.a_first[hi]; ++c) {
+  const Index* const wall_b = wc_list.b.data();
+  for (Index c = first; c < last; ++c) {
+    if (planes.planes_in_lanes && planes.is_plane[wall_b[c]]) continue;
     const Index i = wall_a[c];
     V3 f = load(a_side[i].force), t = load(a_side[i].torque);
     ball_wall<LinearLaw, kFriction, false, true>(balls, bodies, pairs, walls, s, wc, c, i,

@@ -36,6 +36,14 @@ void sphere_kernel_ball_ball(const SphereKernelView& v, std::int32_t lo, std::in
     sphere_kernel_ball_ball_avx2(v, lo, hi);
 }
 
+void sphere_kernel_ball_plane(const SpherePlaneView& v, std::int32_t first, std::int32_t last,
+                              int lanes) {
+  if (lanes == 8)
+    sphere_kernel_ball_plane_avx512(v, first, last);
+  else
+    sphere_kernel_ball_plane_avx2(v, first, last);
+}
+
 std::int32_t sphere_kernel_update(const SphereUpdateView& v, std::int32_t lo, std::int32_t hi,
                                   int lanes, SphereUpdateReport& report) {
   return lanes == 8 ? sphere_kernel_update_avx512(v, lo, hi, report)

@@ -1,5 +1,5 @@
-// The ball–ball contacts of a sphere-only scene, evaluated several at a time in the
-// lanes of SIMD registers (AVX2: 4 contacts, AVX-512: 8).
+// The ball–ball and ball–plane contacts of a sphere-only scene, evaluated several at
+// a time in the lanes of SIMD registers (AVX2: 4 contacts, AVX-512: 8), and its leapfrog.
 //
 // Why: the scalar force pass spends most of its time waiting along each contact's
 // chain of dependent operations (partner load, distance, square root, division,
@@ -53,6 +53,34 @@ struct SphereKernelView {
   double* a_side;        // 6 per ball: set here to the sum of its side-a ball–ball wrenches
 };
 
+// The ball–wall candidates of a sphere-only scene whose walls are planes (walls.hpp),
+// several contacts at a time. Walls of another shape are left to the scalar pass:
+// their candidates are skipped here.
+struct SpherePlaneView {
+  const double* position;          // m, per ball
+  const double* radius;            // m, per ball
+  const double* velocity;          // m/s, per ball (half step)
+  const double* angular_velocity;  // rad/s, per ball (half step)
+  const std::int32_t* material;    // per ball
+  const double* pair;              // kn, ks (N/m), mu per (ball material, wall): PairTable::wall
+  std::int32_t walls;              // pair[(mi·walls + w)·3 ...]
+  // Per wall, kPlaneRow doubles: its unit normal, a point on it (m) and its velocity
+  // (m/s); is_plane[w] says whether wall w is a plane (the others' rows are zeros).
+  const double* plane;
+  const std::uint8_t* is_plane;
+  double dt;  // s
+  // the ball–wall candidate list (contact_list.hpp): side a is the ball, b the wall
+  const std::int32_t* a;
+  const std::int32_t* b;
+  double* shear_force;   // N, 3 per contact; null in a frictionless scene
+  double* b_wrench;      // 6 per contact: −F, and a zero torque the kernel leaves alone
+  double* normal_force;  // N, per contact
+  double* slip_total;    // J, per contact; null: no energy ledger
+  std::uint8_t* active;  // per contact
+  double* a_side;        // 6 per ball: each plane contact's wrench is added to it
+};
+constexpr int kPlaneRow = 9;
+
 // The leapfrog of consecutive spheres (integrator.cpp's update_body, after the
 // gather has stored each body's resultant), several bodies per pass. Ball k is body
 // k; vectors are three doubles per body.
@@ -99,6 +127,13 @@ const char* sphere_kernel_name(int lanes);
 void sphere_kernel_ball_ball(const SphereKernelView& v, std::int32_t lo, std::int32_t hi,
                              int lanes);
 
+// Evaluates the ball–wall candidates [first, last) whose wall is a plane with the
+// kernel of `lanes` lanes and adds each one's wrench to its ball's a_side, in
+// candidate order, as the scalar pass does after the ball–ball contacts. The scene
+// has no contact dashpots.
+void sphere_kernel_ball_plane(const SpherePlaneView& v, std::int32_t first, std::int32_t last,
+                              int lanes);
+
 // Updates bodies [lo, lo + n·lanes) for the largest such n with lo + n·lanes <= hi,
 // folding into `report`, and returns lo + n·lanes: the caller updates the rest.
 std::int32_t sphere_kernel_update(const SphereUpdateView& v, std::int32_t lo, std::int32_t hi,
@@ -107,6 +142,9 @@ std::int32_t sphere_kernel_update(const SphereUpdateView& v, std::int32_t lo, st
 // The kernels, one per instruction set (sphere_kernel_avx2.cpp, sphere_kernel_avx512.cpp).
 void sphere_kernel_ball_ball_avx2(const SphereKernelView& v, std::int32_t lo, std::int32_t hi);
 void sphere_kernel_ball_ball_avx512(const SphereKernelView& v, std::int32_t lo, std::int32_t hi);
+void sphere_kernel_ball_plane_avx2(const SpherePlaneView& v, std::int32_t first, std::int32_t last);
+void sphere_kernel_ball_plane_avx512(const SpherePlaneView& v, std::int32_t first,
+                                     std::int32_t last);
 std::int32_t sphere_kernel_update_avx2(const SphereUpdateView& v, std::int32_t lo, std::int32_t hi,
                                        SphereUpdateReport& report);
 std::int32_t sphere_kernel_update_avx512(const SphereUpdateView& v, std::int32_t lo,

@@ -37,6 +37,9 @@ using vm = long __attribute__((vector_size(32)));  // a lane mask: all bits set 
 [[gnu::always_inline]] inline void storeu(double* p, vd x) {
   _mm256_storeu_pd(p, x);
 }
+[[gnu::always_inline]] inline __m256d quarter(vd x, int /*g: 0*/) {
+  return x;
+}
 
 }  // namespace
 }  // namespace ballast
@@ -70,10 +73,16 @@ namespace {
 
 #include "engine/sphere_kernel_lanes.hpp"
 #include "engine/sphere_update_lanes.hpp"
+#include "engine/sphere_wall_lanes.hpp"
 
 void ballast::sphere_kernel_ball_ball_avx2(const SphereKernelView& v, std::int32_t lo,
                                            std::int32_t hi) {
   ball_ball_contacts(v, lo, hi);
+}
+
+void ballast::sphere_kernel_ball_plane_avx2(const SpherePlaneView& v, std::int32_t first,
+                                            std::int32_t last) {
+  ball_plane_contacts(v, first, last);
 }
 
 std::int32_t ballast::sphere_kernel_update_avx2(const SphereUpdateView& v, std::int32_t lo,

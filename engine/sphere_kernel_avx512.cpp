@@ -42,6 +42,11 @@ using vm = long __attribute__((vector_size(64)));  // a lane mask: all bits set 
 [[gnu::always_inline]] inline void storeu(double* p, vd x) {
   _mm512_storeu_pd(p, x);
 }
+[[gnu::always_inline]] inline __m256d quarter(vd x, int g) {
+  // Zero-masked with every lane on: the plain form trips GCC 12's false "may be used
+  // uninitialized" about its undefined pass-through, as vsqrt's does.
+  return g == 0 ? _mm512_maskz_extractf64x4_pd(0xF, x, 0) : _mm512_maskz_extractf64x4_pd(0xF, x, 1);
+}
 
 }  // namespace
 }  // namespace ballast
@@ -83,10 +88,16 @@ namespace {
 
 #include "engine/sphere_kernel_lanes.hpp"
 #include "engine/sphere_update_lanes.hpp"
+#include "engine/sphere_wall_lanes.hpp"
 
 void ballast::sphere_kernel_ball_ball_avx512(const SphereKernelView& v, std::int32_t lo,
                                              std::int32_t hi) {
   ball_ball_contacts(v, lo, hi);
+}
+
+void ballast::sphere_kernel_ball_plane_avx512(const SpherePlaneView& v, std::int32_t first,
+                                              std::int32_t last) {
+  ball_plane_contacts(v, first, last);
 }
 
 std::int32_t ballast::sphere_kernel_update_avx512(const SphereUpdateView& v, std::int32_t lo,

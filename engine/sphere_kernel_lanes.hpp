@@ -2,37 +2,14 @@
 // one file per instruction set (sphere_lane_ops.hpp lists what that file defines).
 #pragma once
 
-#include <bit>
 #include <cstdint>
 
 #include "engine/sphere_kernel.hpp"
 #include "engine/sphere_lane_ops.hpp"
+#include "engine/sphere_law_lanes.hpp"
 
 namespace ballast {
 namespace {
-
-// What a batch hands back per lane, as rows of kLanes doubles: the scalar stores
-// that follow read them lane by lane.
-enum Row {
-  kFx,
-  kFy,
-  kFz,
-  kTax,
-  kTay,
-  kTaz,
-  kBfx,
-  kBfy,
-  kBfz,
-  kTbx,
-  kTby,
-  kTbz,
-  kSx,
-  kSy,
-  kSz,
-  kFn,
-  kSlip,
-  kRows
-};
 
 // The side-a wrench of the ball whose contacts the lanes are going through, carried
 // from lane to lane and batch to batch. Each lane adds its wrench to it (starting
@@ -40,9 +17,12 @@ enum Row {
 // stores the sum in the ball's a_side slot, which the ball's last lane leaves at its
 // total. Stored, never reloaded: adding into a_side in memory made each lane wait
 // for the store of the lane before (the hottest samples of a first version).
+// Held as one lane's wrench (columns4 / columns2), so a lane adds it in two
+// instructions.
 struct RunningWrench {
   std::int32_t ball = -1;
-  double sum[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  __m256d force_torque_x = _mm256_setzero_pd();  // fx fy fz tx
+  __m128d torque_yz = _mm_setzero_pd();          // ty tz
 };
 
 // Contacts cc[0..kLanes) of side-a balls ia[...] (in contact order); the first n
@@ -80,37 +60,14 @@ template <bool kFriction, bool kOneMaterial>
     ks = lanes(v.pair, pair, 3, 1);
     mu = lanes(v.pair, pair, 3, 2);
   }
-  // law_linear.hpp's LinearLaw::force (spring_dashpot_contact), lane by lane.
   const vd fn = kn * overlap;
-  L3 f = fn * normal;
   const vd zero = splat(0.0);
-  L3 s{zero, zero, zero};
-  vd slip = zero;
-  int sliding_lanes = 0;
-  if constexpr (kFriction) {
-    const vd vn = dot(vrel, normal);
-    s = load3(v.shear_force, cc);
-    const vd old_mag2 = dot(s, s);
-    const vd off_plane = dot(s, normal);
-    s = s - off_plane * normal;
-    const vm turned = (off_plane * off_plane > splat(0x1p-54) * old_mag2) & touch;
-    if (any(turned)) {
-      const vd new_mag2 = dot(s, s);
-      s = select(turned & (new_mag2 > zero), vsqrt(old_mag2 / new_mag2) * s, s);
-    }
-    const L3 vs = vrel - vn * normal;
-    s = s - (ks * splat(v.dt)) * vs;
-    const vd limit = mu * fn;
-    const vd mag2 = dot(s, s);
-    const vm sliding = (mag2 > limit * limit) & touch;
-    sliding_lanes = lane_bits(sliding);
-    if (sliding_lanes != 0) {
-      const vd mag = vsqrt(mag2);
-      slip = select(sliding & (ks > zero), limit * (mag - limit) / ks, zero);
-      s = select(sliding, (limit / mag) * s, s);
-    }
-    f = f + s;
-  }
+  const L3 s0 = kFriction ? load3(v.shear_force, cc) : L3{zero, zero, zero};
+  const LawLanes law = linear_law<kFriction>(normal, vrel, fn, ks, mu, v.dt, touch, s0);
+  const L3 f = law.force;
+  L3 s = law.shear;
+  const vd slip = law.slip;
+  const int sliding_lanes = law.sliding_lanes;
   // An open contact stores zeros (forces.cpp open_contact): +0, which adds nothing.
   const L3 o{zero, zero, zero};
   const L3 fa = select(touch, f, o), fb = select(touch, -f, o);
@@ -123,42 +80,52 @@ template <bool kFriction, bool kOneMaterial>
     tb = select(touch, (-lj) * nxf, o);
   }
   s = select(touch, s, o);
-  alignas(64) double out[kRows][kLanes];
-  const auto put = [&](int row, vd x) { *reinterpret_cast<vd*>(out[row]) = x; };
-  put(kFx, fa.x), put(kFy, fa.y), put(kFz, fa.z);
-  put(kTax, ta.x), put(kTay, ta.y), put(kTaz, ta.z);
-  put(kBfx, fb.x), put(kBfy, fb.y), put(kBfz, fb.z);
-  put(kTbx, tb.x), put(kTby, tb.y), put(kTbz, tb.z);
-  put(kSx, s.x), put(kSy, s.y), put(kSz, s.z);
-  put(kFn, select(touch, fn, zero));
-  put(kSlip, slip);
+  // Each lane's values side by side, four lanes at a time (a transpose of the rows),
+  // so that a lane stores its wrenches and shear force a register at a time.
   const int touching = lane_bits(touch);
-  for (int k = 0; k < n; ++k) {
-    const long c = cc[k];
-    v.active[c] = std::uint8_t((touching >> k) & 1);
-    v.normal_force[c] = out[kFn][k];
-    if constexpr (kFriction) {
-      double* const sf = v.shear_force + 3 * c;
-      sf[0] = out[kSx][k], sf[1] = out[kSy][k], sf[2] = out[kSz][k];
+  const vd fn_stored = select(touch, fn, zero);
+  for (int g = 0; 4 * g < n; ++g) {
+    __m256d a_ft[4], b_ft[4], shear_fn[4];
+    __m128d a_t[4], b_t[4];
+    columns4(fa.x, fa.y, fa.z, ta.x, g, a_ft);
+    columns2(ta.y, ta.z, g, a_t);
+    columns4(fb.x, fb.y, fb.z, tb.x, g, b_ft);
+    columns2(tb.y, tb.z, g, b_t);
+    columns4(s.x, s.y, s.z, fn_stored, g, shear_fn);
+    for (int q = 0; q < 4 && 4 * g + q < n; ++q) {
+      const int k = 4 * g + q;
+      const long c = cc[k];
+      v.active[c] = std::uint8_t((touching >> k) & 1);
+      const __m128d sz_fn = _mm256_extractf128_pd(shear_fn[q], 1);
+      _mm_storeh_pd(v.normal_force + c, sz_fn);
+      if constexpr (kFriction) {
+        double* const sf = v.shear_force + 3 * c;
+        _mm_storeu_pd(sf, _mm256_castpd256_pd128(shear_fn[q]));
+        _mm_store_sd(sf + 2, sz_fn);
+      }
+      double* const bw = v.b_wrench + 6 * c;
+      _mm256_storeu_pd(bw, b_ft[q]);
+      _mm_storeu_pd(bw + 4, b_t[q]);
+      const std::int32_t i = ia[k];
+      // All ones for the same ball as the lane before: its sum carries on; from zero
+      // otherwise (0 + F, as the scalar pass starts from zero).
+      const __m256i keep = _mm256_set1_epi64x(-std::int64_t(i == run.ball));
+      run.force_torque_x =
+          _mm256_add_pd(_mm256_and_pd(run.force_torque_x, _mm256_castsi256_pd(keep)), a_ft[q]);
+      run.torque_yz = _mm_add_pd(
+          _mm_and_pd(run.torque_yz, _mm_castsi128_pd(_mm256_castsi256_si128(keep))), a_t[q]);
+      double* const aw = v.a_side + 6 * long(i);
+      _mm256_storeu_pd(aw, run.force_torque_x);
+      _mm_storeu_pd(aw + 4, run.torque_yz);
+      run.ball = i;
     }
-    double* const bw = v.b_wrench + 6 * c;
-    for (int q = 0; q < 6; ++q) bw[q] = out[kBfx + q][k];
-    const std::int32_t i = ia[k];
-    const std::uint64_t keep = -std::uint64_t(i == run.ball);  // all ones: same ball
-    double* const aw = v.a_side + 6 * long(i);
-    for (int q = 0; q < 6; ++q) {
-      const double carried = std::bit_cast<double>(std::bit_cast<std::uint64_t>(run.sum[q]) & keep);
-      run.sum[q] = carried + out[kFx + q][k];
-      aw[q] = run.sum[q];
-    }
-    run.ball = i;
   }
   // Slip work, only where a lane slid (rare once a bed settles): touching slip_total
   // for every contact would pull its cache lines in every step.
   if constexpr (kFriction) {
     if (sliding_lanes != 0 && v.slip_total != nullptr)
       for (int k = 0; k < n; ++k)
-        if ((sliding_lanes >> k) & 1) v.slip_total[cc[k]] += out[kSlip][k];
+        if ((sliding_lanes >> k) & 1) v.slip_total[cc[k]] += slip[k];
   }
 }
 

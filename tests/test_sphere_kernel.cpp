@@ -56,25 +56,71 @@ Outcome landing_bed(int lanes, double friction) {
   return finish(sim, 0.05);
 }
 
-// The same kind of cloud with every other sphere of a second material: softer and
-// rougher, so that each contact's pair properties come from the table.
-Outcome two_material_bed(int lanes) {
+// The same kind of cloud in a narrower box, with every other sphere of a second
+// material: softer and rougher, so that each contact's pair properties come from
+// the table. 203 spheres from `floor` (m) up, walls listed by add_walls.
+const Vec3 kCloudHi(0.3, 0.15, 1.0);
+const double kCloudRadius = 0.5 * box_test::kSphereDiameter;
+const Material kHard{1e8, 1e8, 0.3}, kSoft{4e7, 2e7, 0.6};
+
+template <class AddWalls>
+Simulation two_material_cloud(int lanes, double floor, AddWalls add_walls) {
   SimulationSettings s;
-  const Vec3 lo = Vec3::Zero(), hi(0.3, 0.15, 1.0);
-  const double r = 0.5 * box_test::kSphereDiameter;
-  s.domain_lo = lo - Vec3::Constant(2 * r);
-  s.domain_hi = hi + Vec3::Constant(2 * r);
+  s.domain_lo = -Vec3::Constant(2 * kCloudRadius);
+  s.domain_hi = kCloudHi + Vec3::Constant(2 * kCloudRadius);
   s.gravity = Vec3(0, 0, -981.0);
   s.local_damping = 0.2;
   s.simd_lanes = lanes;
   Simulation sim(s);
-  const Material hard{1e8, 1e8, 0.3}, soft{4e7, 2e7, 0.6};
-  const Index m0 = sim.add_material(hard), m1 = sim.add_material(soft);
-  for (const Wall& w : box_container(lo, hi, hard, soft, /*open_top=*/true)) sim.add_wall(w);
-  const std::vector<Vec3> centres = random_loose_packing(203, r, lo, hi, 0.3, 7);
+  const Index m0 = sim.add_material(kHard), m1 = sim.add_material(kSoft);
+  add_walls(sim);
+  const std::vector<Vec3> centres =
+      random_loose_packing(203, kCloudRadius, Vec3(0, 0, floor), kCloudHi, 0.3, 7);
   for (std::size_t k = 0; k < centres.size(); ++k)
-    sim.add_sphere(centres[k], r, box_test::kDensity, k % 2 == 0 ? m0 : m1);
+    sim.add_sphere(centres[k], kCloudRadius, box_test::kDensity, k % 2 == 0 ? m0 : m1);
+  return sim;
+}
+
+Outcome two_material_bed(int lanes) {
+  Simulation sim = two_material_cloud(lanes, 0.0, [](Simulation& sim) {
+    for (const Wall& w : box_container(Vec3::Zero(), kCloudHi, kHard, kSoft, /*open_top=*/true))
+      sim.add_wall(w);
+  });
   return finish(sim, 0.04);
+}
+
+// The two-material cloud landing on a solid block (a Box wall, which the kernel
+// leaves to the scalar pass) while one end wall moves in and the base slides in its
+// own plane. The block is listed before the container (box_first: the scalar pass
+// takes every wall contact) or after it (the kernel takes the planes' contacts, the
+// scalar pass the block's after them). The block's and the moving wall's total
+// forces (N) say that both were touched.
+struct WalledOutcome {
+  Outcome outcome;
+  double block_force, moving_force;
+};
+WalledOutcome walled_bed(int lanes, bool box_first) {
+  Wall block;
+  block.name = "block";
+  block.shape = WallShape::Box;
+  block.lo = Vec3(0.1, -0.1, -0.1);
+  block.hi = Vec3(0.2, 0.25, 0.06);
+  block.material = kSoft;
+  Index block_index = -1, moving = -1;
+  // The cloud starts above the block.
+  Simulation sim = two_material_cloud(lanes, 0.08, [&](Simulation& sim) {
+    if (box_first) block_index = sim.add_wall(block);
+    for (Wall w : box_container(Vec3::Zero(), kCloudHi, kHard, kSoft, /*open_top=*/true)) {
+      if (w.name == "xmax" || w.name == "base") w.motion = WallMotion::Prescribed;
+      if (w.name == "xmax") w.velocity = Vec3(-0.5, 0.0, 0.0);  // m/s: 20 mm in the run
+      if (w.name == "base") w.velocity = Vec3(0.3, 0.1, 0.0);   // sliding in its own plane
+      const Index index = sim.add_wall(w);
+      if (w.name == "xmax") moving = index;
+    }
+    if (!box_first) block_index = sim.add_wall(block);
+  });
+  const Outcome out = finish(sim, 0.04);
+  return {out, sim.wall_force(block_index).norm(), sim.wall_force(moving).norm()};
 }
 
 }  // namespace
@@ -112,6 +158,21 @@ TEST(SphereKernel, TwoMaterialsGiveTheScalarBits) {
   EXPECT_GT(scalar.slip, 0.0);
   for (std::size_t k = 1; k < w.size(); ++k)
     EXPECT_EQ(two_material_bed(w[k]).hash, scalar.hash) << w[k] << " lanes";
+}
+
+TEST(SphereKernel, PlanesBesideABoxGiveTheScalarBits) {
+  const std::vector<int> w = widths();
+  if (w.size() == 1) GTEST_SKIP() << "this CPU has neither AVX2 nor AVX-512";
+  for (bool box_first : {false, true}) {
+    const WalledOutcome scalar = walled_bed(0, box_first);
+    EXPECT_GT(scalar.outcome.contacts, 150);
+    EXPECT_GT(scalar.outcome.slip, 0.0);
+    EXPECT_GT(scalar.block_force, 1.0) << "the spheres rest on the block";
+    EXPECT_GT(scalar.moving_force, 1.0) << "the moving wall pushes on the bed";
+    for (std::size_t k = 1; k < w.size(); ++k)
+      EXPECT_EQ(walled_bed(w[k], box_first).outcome.hash, scalar.outcome.hash)
+          << w[k] << " lanes, box first " << box_first;
+  }
 }
 
 // A kernel the CPU does not run is refused at set-up, naming the field.

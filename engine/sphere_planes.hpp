@@ -1,0 +1,37 @@
+// The walls of a sphere scene as the SIMD kernel reads them (sphere_kernel.hpp,
+// SpherePlaneView): one row per wall, and whether the kernel may take the planes'
+// contacts at all.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "engine/contact_list.hpp"
+#include "engine/pair_table.hpp"
+#include "engine/sphere_kernel.hpp"
+#include "engine/walls.hpp"
+
+namespace ballast {
+
+struct PlaneTable {
+  // Per wall, kPlaneRow doubles: unit normal, a point on the plane (m), velocity (m/s);
+  // zeros for a wall of another shape.
+  std::vector<double> rows;
+  std::vector<std::uint8_t> is_plane;  // per wall
+  // The kernel takes the planes' candidates, then the scalar pass the others', which
+  // sums each ball's wrench in the scalar order only when no plane follows a wall of
+  // another shape in the list (a ball's candidates come in wall order).
+  bool planes_in_lanes = false;
+  bool other_shapes = false;  // some wall is not a plane (the sleeper's box)
+};
+
+// The table for this step's walls (they move: servo, prescribed motion).
+PlaneTable plane_table(const std::vector<Wall>& walls);
+
+// The kernel's view of the wall candidates: the balls' arrays and the step as the
+// ball–ball kernel's view `k` has them (its shear forces null: a frictionless scene),
+// the table's rows, the wall list's arrays; ledger: book the slip work.
+SpherePlaneView sphere_plane_view(const SphereKernelView& k, const PlaneTable& planes,
+                                  const PairTable& pairs, ContactList& wall_contacts, bool ledger);
+
+}  // namespace ballast
