@@ -2,7 +2,7 @@
 """Beds from elsewhere: does our engine run a packing written by another code, in that
 code's order or in none, as fast as its own, against LAMMPS on the same bed?
 
-    foreign_bed.py [--rounds N] [--csv OUT]
+    foreign_bed.py [--rounds N] [--csv OUT] [--beds spheres|sample1]
 
 From make bench-peers' beds (build/peers/spheres.txt, sample1.txt) it makes:
   lammps-spheres    the sphere bed after 20,000 steps of LAMMPS under the benchmark's
@@ -13,7 +13,8 @@ and times, round after round in turned order, our engine on 1 and 2 threads with
 file's numbering kept (bench-bed --keep-file-order) and as the engine numbers it
 (Simulation::sort_bodies_spatially), and LAMMPS on 1 process, on each bed and on ours.
 Prints the engine's decision on each bed's numbering (mean step between consecutive
-bodies, before and sorted), the medians, each against LAMMPS on the same bed, and the state hashes (a
+bodies, before and sorted), the medians, each against LAMMPS on the same bed (as a ratio of
+medians and as the median of each round's ratio, with its range), and the state hashes (a
 bed's shufflings sort to one numbering, so to one hash). Needs lmp (make bench-peers
 installs it). docs/PERFORMANCE.md, "Beds from elsewhere", quotes its output.
 """
@@ -99,21 +100,28 @@ def main():
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--cache", default=os.path.join(ballast_peer.ROOT, "build", "peers"))
     ap.add_argument("--csv", help="write the medians here")
+    ap.add_argument("--beds", choices=tuple(STEPS),
+                    help="only the beds of this kind (default: both kinds)")
     args = ap.parse_args()
     ballast = os.environ.get("BALLAST", os.path.join(ballast_peer.ROOT, "build", "study", "ballast"))
     work = os.path.join(args.cache, "foreign")
     os.makedirs(work, exist_ok=True)
-    ours = {k: os.path.join(args.cache, f"{k}.txt") for k in STEPS}
+    kinds = [args.beds] if args.beds else list(STEPS)
+    ours = {k: os.path.join(args.cache, f"{k}.txt") for k in kinds}
     for path in ours.values():
         if not os.path.exists(path):
             raise SystemExit(f"foreign_bed.py: no bed at {path} (run make bench-peers once)")
-    lmp = lammps_written(ours["spheres"], os.path.join(work, "lammps-spheres.txt"), work)
-    beds = [("ours-spheres", ours["spheres"], "spheres"),
-            ("lammps-spheres", lmp, "spheres"),
-            ("shuffled-spheres", shuffled(lmp, os.path.join(work, "shuffled-spheres.txt")), "spheres"),
-            ("ours-sample1", ours["sample1"], "sample1"),
-            ("shuffled-sample1", shuffled(ours["sample1"], os.path.join(work, "shuffled-sample1.txt")),
-             "sample1")]
+    beds = []
+    if "spheres" in ours:
+        lmp = lammps_written(ours["spheres"], os.path.join(work, "lammps-spheres.txt"), work)
+        beds += [("ours-spheres", ours["spheres"], "spheres"),
+                 ("lammps-spheres", lmp, "spheres"),
+                 ("shuffled-spheres", shuffled(lmp, os.path.join(work, "shuffled-spheres.txt")),
+                  "spheres")]
+    if "sample1" in ours:
+        beds += [("ours-sample1", ours["sample1"], "sample1"),
+                 ("shuffled-sample1",
+                  shuffled(ours["sample1"], os.path.join(work, "shuffled-sample1.txt")), "sample1")]
     for bed, path, _ in beds:
         print(f"{bed}: {numbering(ballast, path)}", flush=True)
     runs = [(bed, code, threads, keep) for bed, _, _ in beds
@@ -138,17 +146,26 @@ def main():
 
     rows = []
     print("\n| bed | ours, file's order, 1 | ours, sorted, 1 | ours, file's order, 2 | ours, sorted, 2 "
-          "| LAMMPS, 1 | ours sorted / LAMMPS, 1 |")
-    print("|---|---|---|---|---|---|---|")
+          "| LAMMPS, 1 | ours sorted / LAMMPS, 1 | the same, round by round |")
+    print("|---|---|---|---|---|---|---|---|")
     for bed, _, _ in beds:
         med = {(c, t, keep): statistics.median(rates[(bed, c, t, keep)])
                for (b, c, t, keep) in runs if b == bed}
         lammps = med[("lammps", 1, None)]
         cells = [med[("ballast", 1, True)], med[("ballast", 1, False)], med[("ballast", 2, True)],
                  med[("ballast", 2, False)], lammps]
+        # Each round's ratio of our run to LAMMPS's on the same bed, which ran minutes
+        # apart at most: a host whose speed drifts leaves their median alone better than
+        # the ratio of the two medians (compare_revisions.py does the same).
+        paired = [o / l for o, l in zip(rates[(bed, "ballast", 1, False)],
+                                        rates[(bed, "lammps", 1, None)])]
+        by_round = statistics.median(paired)
         print(f"| {bed} | " + " | ".join(f"{v:.3g}" for v in cells) +
-              f" | **{med[('ballast', 1, False)] / lammps:.2f}** |")
-        rows.append([bed] + [f"{v:.4g}" for v in cells] + [f"{med[('ballast', 1, False)] / lammps:.3f}"])
+              f" | **{med[('ballast', 1, False)] / lammps:.2f}** | {by_round:.2f} "
+              f"({min(paired):.2f}–{max(paired):.2f}) |")
+        rows.append([bed] + [f"{v:.4g}" for v in cells] +
+                    [f"{med[('ballast', 1, False)] / lammps:.3f}", f"{by_round:.3f}",
+                     f"{min(paired):.3f}", f"{max(paired):.3f}"])
     print("\nstate hashes (1 and 2 threads, every round), file's order kept / sorted:")
     for bed, _, _ in beds:
         print(f"  {bed}: {', '.join(sorted(hashes[(bed, True)]))} / {', '.join(sorted(hashes[(bed, False)]))}")
@@ -156,7 +173,8 @@ def main():
         with open(args.csv, "w", newline="") as f:
             w = csv.writer(f)
             w.writerow(["bed", "ours_file_order_1", "ours_sorted_1", "ours_file_order_2", "ours_sorted_2",
-                        "lammps_1", "ours_sorted_over_lammps_1"])
+                        "lammps_1", "ours_sorted_over_lammps_1", "round_ratio_median",
+                        "round_ratio_min", "round_ratio_max"])
             w.writerows(rows)
 
 
