@@ -268,7 +268,7 @@ void sphere_pass_simd(const BallStore& ball_store, const BodyStore& body_store,
   // box) through the loop below (sphere_planes.hpp says when that keeps the order).
   const PlaneTable planes = plane_table(walls);
   if (planes.planes_in_lanes) {
-    const SpherePlaneView p = sphere_plane_view(k, planes, pairs, wc_list, s.ledger);
+    const SpherePlaneView p = sphere_plane_view(k, planes, pairs, wc_list, kFriction, s.ledger);
     sphere_kernel_ball_plane(p, first, last, s.sphere_kernel_lanes);
     if (!planes.other_shapes) return;
   }

@@ -27,7 +27,8 @@ PlaneTable plane_table(const std::vector<Wall>& walls) {
 }
 
 SpherePlaneView sphere_plane_view(const SphereKernelView& k, const PlaneTable& planes,
-                                  const PairTable& pairs, ContactList& wall_contacts, bool ledger) {
+                                  const PairTable& pairs, ContactList& wall_contacts, bool friction,
+                                  bool ledger) {
   static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Wrench) == 6 * sizeof(double));
   ContactList& wc = wall_contacts;
   SpherePlaneView p;
@@ -43,7 +44,7 @@ SpherePlaneView sphere_plane_view(const SphereKernelView& k, const PlaneTable& p
   p.dt = k.dt;
   p.a = wc.a.data();
   p.b = wc.b.data();
-  p.shear_force = k.shear_force != nullptr ? flat(wc.shear_force) : nullptr;
+  p.shear_force = friction ? flat(wc.shear_force) : nullptr;
   p.b_wrench = wc.b_wrench.data()->force.data();
   p.normal_force = wc.normal_force.data();
   p.slip_total = ledger ? wc.slip_total.data() : nullptr;

@@ -29,9 +29,11 @@ struct PlaneTable {
 PlaneTable plane_table(const std::vector<Wall>& walls);
 
 // The kernel's view of the wall candidates: the balls' arrays and the step as the
-// ball–ball kernel's view `k` has them (its shear forces null: a frictionless scene),
-// the table's rows, the wall list's arrays; ledger: book the slip work.
+// ball–ball kernel's view `k` has them, the table's rows, the wall list's arrays;
+// friction: the scene's (not read off `k`, whose shear array is null when there is no
+// ball–ball candidate); ledger: book the slip work.
 SpherePlaneView sphere_plane_view(const SphereKernelView& k, const PlaneTable& planes,
-                                  const PairTable& pairs, ContactList& wall_contacts, bool ledger);
+                                  const PairTable& pairs, ContactList& wall_contacts, bool friction,
+                                  bool ledger);
 
 }  // namespace ballast

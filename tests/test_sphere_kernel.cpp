@@ -7,6 +7,7 @@
 // lists, one or two ball materials, with or without friction.
 #include <gtest/gtest.h>
 
+#include <utility>
 #include <vector>
 
 #include "cases/bed.hpp"
@@ -173,6 +174,30 @@ TEST(SphereKernel, PlanesBesideABoxGiveTheScalarBits) {
       EXPECT_EQ(walled_bed(w[k], box_first).outcome.hash, scalar.outcome.hash)
           << w[k] << " lanes, box first " << box_first;
   }
+}
+
+// One sphere sliding on a frictional floor: no ball–ball candidate at all, so the
+// ball–ball lanes have no shear array, yet the wall lanes must apply friction.
+TEST(SphereKernel, ALoneSphereSlidesOnAPlaneAsTheScalarPassHasIt) {
+  const std::vector<int> w = widths();
+  if (w.size() == 1) GTEST_SKIP() << "this CPU has neither AVX2 nor AVX-512";
+  const auto slide = [](int lanes) {
+    SimulationSettings s = scenes::bare_settings(0.5);
+    s.gravity = Vec3(0, 0, -9.81);
+    s.simd_lanes = lanes;
+    Simulation sim(s);
+    const Material m{2e7, 2e7, 0.3};
+    const Index mat = sim.add_material(m);
+    sim.add_wall(scenes::plane_wall(Vec3::Zero(), Vec3::UnitZ(), m));
+    const Index b = sim.add_sphere(Vec3(-0.4, 0, 0.0199), 0.02, 2600.0, mat);
+    sim.set_body_velocity(b, Vec3(1.0, 0, 0));
+    sim.run(20000);
+    return std::make_pair(state_hash(sim), sim.bodies().angular_velocity[b].y());
+  };
+  const auto scalar = slide(0);
+  EXPECT_GT(scalar.second, 1.0) << "friction spins the sphere up (rad/s)";
+  for (std::size_t k = 1; k < w.size(); ++k)
+    EXPECT_EQ(slide(w[k]).first, scalar.first) << w[k] << " lanes";
 }
 
 // A kernel the CPU does not run is refused at set-up, naming the field.
