@@ -266,11 +266,12 @@ void sphere_pass_simd(const BallStore& ball_store, const BodyStore& body_store,
   const Index first = wc_list.a_first[lo], last = wc_list.a_first[hi];
   // The plane walls' candidates go through the kernel, then the others' (the sleeper's
   // box) through the loop below (sphere_planes.hpp says when that keeps the order).
-  const PlaneTable planes = plane_table(walls);
-  if (planes.planes_in_lanes) {
-    const SpherePlaneView p = sphere_plane_view(k, planes, pairs, wc_list, kFriction, s.ledger);
+  const PlaneTable* const planes = s.planes;
+  const bool planes_in_lanes = planes != nullptr && planes->planes_in_lanes;
+  if (planes_in_lanes) {
+    const SpherePlaneView p = sphere_plane_view(k, *planes, pairs, wc_list, kFriction, s.ledger);
     sphere_kernel_ball_plane(p, first, last, s.sphere_kernel_lanes);
-    if (!planes.other_shapes) return;
+    if (!planes->other_shapes) return;
   }
   const BallView balls = view(ball_store);
   const BodyView bodies = view(body_store);
@@ -280,7 +281,7 @@ void sphere_pass_simd(const BallStore& ball_store, const BodyStore& body_store,
   Wrench* const a_side = a_side_store.data();
   const Index* const wall_b = wc_list.b.data();
   for (Index c = first; c < last; ++c) {
-    if (planes.planes_in_lanes && planes.is_plane[wall_b[c]]) continue;
+    if (planes_in_lanes && planes->is_plane[wall_b[c]]) continue;
     const Index i = wall_a[c];
     V3 f = load(a_side[i].force), t = load(a_side[i].torque);
     ball_wall<LinearLaw, kFriction, false, true>(balls, bodies, pairs, walls, s, wc, c, i,

@@ -23,6 +23,8 @@
 
 namespace ballast {
 
+struct PlaneTable;  // sphere_planes.hpp
+
 struct ForceSettings {
   double dt = 0.0;             // s
   int law = 0;                 // the contact law, a number of ContactLaws (contact_laws.hpp)
@@ -36,6 +38,9 @@ struct ForceSettings {
   // whose flat live list (ContactList::make_flat_live) is current. Simulation::step
   // decides and keeps the list current; the kernel gives the scalar pass's bits.
   int sphere_kernel_lanes = 0;
+  // With the kernel: the walls as it reads them (sphere_planes.hpp), made by the
+  // caller for this step; null: the scalar pass takes every wall contact.
+  const PlaneTable* planes = nullptr;
   // The pass evaluates the ball–ball list's live candidates only, so the caller
   // keeps its live_cover at or above the bound on how far a gap can have closed
   // (contact_list.hpp, "Far candidates", "Live candidates"; Simulation::far_gap()).

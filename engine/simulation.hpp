@@ -27,6 +27,7 @@
 #include "engine/rigid_rotation.hpp"
 #include "engine/servo.hpp"
 #include "engine/spatial_order.hpp"
+#include "engine/sphere_planes.hpp"
 #include "engine/timed_split.hpp"
 #include "engine/timestep.hpp"
 #include "engine/walls.hpp"
@@ -246,6 +247,7 @@ class Simulation {
   // Thread shares of the force pass and of the integrator, following measured time
   // (timed_split.hpp): they move which thread computes a body, never a bit.
   TimedSplit contact_split_, integrate_split_;
+  PlaneTable plane_table_;  // the walls as the sphere kernel reads them, made each step
   std::vector<Vec3> reference_positions_;  // ball positions at the last neighbour build
   std::vector<Vec3> wall_reference_;       // wall displacements at the last build
   std::vector<Vec3> wall_force_;           // current only while wall_forces_summed_

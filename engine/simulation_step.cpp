@@ -17,6 +17,7 @@
 #include "engine/forces.hpp"
 #include "engine/integrator.hpp"
 #include "engine/sphere_kernel.hpp"
+#include "engine/sphere_planes.hpp"
 
 namespace ballast {
 
@@ -202,6 +203,7 @@ void Simulation::do_step() {
   integrate_split_.prepare(threads);
   TimedSplit* const contact_split = threads > 1 ? &contact_split_ : nullptr;
   TimedSplit* const integrate_split = threads > 1 ? &integrate_split_ : nullptr;
+  if (kernel && has_walls) fill_plane_table(walls_, plane_table_);
   const ForceSettings fs{.dt = dt_,
                          .law = law_,
                          .damping_ratio = settings_.damping_ratio,
@@ -209,6 +211,7 @@ void Simulation::do_step() {
                          .all_spheres = all_spheres_,
                          .ledger = settings_.energy_ledger,
                          .sphere_kernel_lanes = kernel ? lanes : 0,
+                         .planes = kernel && has_walls ? &plane_table_ : nullptr,
                          .refresh_live = refresh_live && !kernel,
                          .split = contact_split};
   const IntegratorSettings is{.dt = dt_,

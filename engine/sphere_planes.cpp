@@ -2,8 +2,8 @@
 
 namespace ballast {
 
-PlaneTable plane_table(const std::vector<Wall>& walls) {
-  PlaneTable t;
+void fill_plane_table(const std::vector<Wall>& walls, PlaneTable& t) {
+  t.other_shapes = false;
   t.rows.assign(kPlaneRow * walls.size(), 0.0);
   t.is_plane.assign(walls.size(), 0);
   bool any_plane = false, planes_first = true;
@@ -23,7 +23,6 @@ PlaneTable plane_table(const std::vector<Wall>& walls) {
     }
   }
   t.planes_in_lanes = any_plane && planes_first;
-  return t;
 }
 
 SpherePlaneView sphere_plane_view(const SphereKernelView& k, const PlaneTable& planes,

@@ -25,8 +25,10 @@ struct PlaneTable {
   bool other_shapes = false;  // some wall is not a plane (the sleeper's box)
 };
 
-// The table for this step's walls (they move: servo, prescribed motion).
-PlaneTable plane_table(const std::vector<Wall>& walls);
+// Fills `t` for this step's walls (they move: servo, prescribed motion), keeping its
+// storage from step to step. Simulation::step makes it once per step, before the
+// force pass's threads read it.
+void fill_plane_table(const std::vector<Wall>& walls, PlaneTable& t);
 
 // The kernel's view of the wall candidates: the balls' arrays and the step as the
 // ball–ball kernel's view `k` has them, the table's rows, the wall list's arrays;

@@ -3,9 +3,9 @@
 // definitions. forces.cpp's ball_wall for a sphere against a plane, lane by lane, in
 // the scalar order of operations, so that the bits are the scalar pass's.
 //
-// Why: in a box the walls carry a tenth of a sphere bed's contacts (the benchmark's
-// settled bed: 513 touching of 673 wall candidates a step, beside 4,300 live ball–ball
-// candidates), and the scalar pass spent about 230 instructions on each touching one.
+// Why: in a box a good share of a sphere bed's contacts are with the walls, and once
+// the ball–ball contacts ran in lanes the scalar wall pass was the step's next largest
+// cost (docs/PERFORMANCE.md, "What bought what").
 #pragma once
 
 #include <cstdint>
