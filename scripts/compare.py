@@ -38,6 +38,7 @@ from ballast_archive import (ZONES, ArchiveError, add_run_arguments, chosen_runs
 from compare_samples import sample_stats, samples_json, samples_markdown, span
 from largest_rotations import (largest_rotations, largest_rotations_markdown, turning_back,
                                turning_back_markdown)
+from log_fit import log_fit
 from paper_values import (FULL_SCALE_SCENES, PHASES, STAGES, comparable, paper_sample,
                           paper_text, paper_values, scale_shortfalls)
 from replicates import group_runs, ordered_union
@@ -202,11 +203,8 @@ def decade_rows(trough, rebound):
     lo = 1
     while lo * 10 <= len(trough):
         hi = lo * 10
-        xs = [math.log10(n) for n in range(lo, hi + 1)]
         ys = trough[lo - 1:hi]
-        mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
-        slope = (sum((x - mx) * (y - my) for x, y in zip(xs, ys)) /
-                 sum((x - mx) ** 2 for x in xs))
+        slope = float(log_fit(range(lo, hi + 1), ys)[1])
         span_text = f"cycles {lo:,}–{hi:,}"
         rows += [(f"permanent_settlement_after_{hi}_mm",
                   f"permanent settlement after {hi:,} cycles (mm)", ys[-1] * MM, None, "{:.3g}"),

@@ -18,6 +18,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from fig_common import MM, save  # noqa: E402
+from log_fit import log_fit  # noqa: E402
 from replicates import group_runs, t975  # noqa: E402
 
 
@@ -35,12 +36,6 @@ def replicate_band(rows):
         return mean, None
     sd = values.std(axis=0, ddof=1)
     return mean, t975(len(values) - 1) * sd / np.sqrt(len(values))
-
-
-def log_fit(cycles, settlement):
-    """(a, b) of the least-squares line settlement = a + b·log10 N."""
-    b, a = np.polyfit(np.log10(cycles), settlement, 1)
-    return a, b
 
 
 def draw(ax, group, colour, values, fit):
