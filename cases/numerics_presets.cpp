@@ -34,7 +34,10 @@ constexpr PresetField kBalanced[] = {
 // sqrt(10)). Scaling the density alone would make the bed weigh ten times as much (its
 // mean contact force doubles in docs/TRADEOFFS.md's table). Mass scaling acts as a
 // faster load, and at full scale the clumps then turn half as much on beds settled
-// to rest (a quarter on beds stopped short): fit for porosity and rebound.
+// to rest (a quarter on beds stopped short): fit for porosity and rebound. "sum" makes
+// a Table 2 Sample 2 clump seven times the paper's weight, and at full scale the sleeper
+// then bears on 4-10 clumps instead of 15-21 (docs/CYCLES.md): for clumps under many
+// cycles, override the mass mode with "paper".
 constexpr PresetField kFast[] = {
     {"/numerics/dt_safety", "1.0"},
     {"/particles/mass_mode", "\"sum\""},
