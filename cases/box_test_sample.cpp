@@ -154,8 +154,10 @@ PreparedBed generate_sample(const BoxTestScene& s, std::ostream* log) {
     sim.set_damping_ratio(kGrowthDampingRatio);
     std::mt19937_64 rng(s.seed ^ 0x5851f42d4c957f2dull);
     long balls = 0;
+    double mass = 0.0;  // kg, to set the mass mode's weight beside the nominal sphere's
     for (Index k = 0; k < out.sim.bodies().size(); ++k) {
       const ClumpTemplate& t = templates[static_cast<std::size_t>(k)];
+      mass += t.mass;
       const double u1 = unit_uniform(rng()), u2 = unit_uniform(rng()), u3 = unit_uniform(rng());
       const Quat turn = uniform_rotation(u1, u2, u3);
       const Vec3 centre = out.sim.bodies().position[k];
@@ -173,7 +175,9 @@ PreparedBed generate_sample(const BoxTestScene& s, std::ostream* log) {
       *log << "stage 2: " << s.count << " clumps of " << s.shape << " (" << balls
            << " balls, mass mode " << mass_mode_name(s.mass_mode) << ", rotation "
            << rotation_integrator_name(s.sim.rotation) << ", mean volume "
-           << particle_volume / sphere_volume << " x the nominal sphere's) replace the spheres\n";
+           << particle_volume / sphere_volume << " and mean mass "
+           << mass / (s.count * s.simulated_density() * sphere_volume)
+           << " x the nominal sphere's) replace the spheres\n";
     out.stages.push_back(
         grow(sim, "clumps", 1.0 / p.virtual_sphere_factor, s.expansion_speed, log));
     sim.quench();
