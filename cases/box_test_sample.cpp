@@ -154,7 +154,7 @@ PreparedBed generate_sample(const BoxTestScene& s, std::ostream* log) {
     sim.set_damping_ratio(kGrowthDampingRatio);
     std::mt19937_64 rng(s.seed ^ 0x5851f42d4c957f2dull);
     long balls = 0;
-    double mass = 0.0;  // kg, to set the mass mode's weight beside the nominal sphere's
+    double mass = 0.0;  // kg, for the log: the mode's weight against the nominal sphere's
     for (Index k = 0; k < out.sim.bodies().size(); ++k) {
       const ClumpTemplate& t = templates[static_cast<std::size_t>(k)];
       mass += t.mass;
