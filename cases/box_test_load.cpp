@@ -126,6 +126,7 @@ CycleLoop seat_sleeper(const BoxTestScene& s, Simulation& sim, BoxTestResult& ou
   sleeper.shape = WallShape::Box;
   sleeper.lo = Vec3(loop.x0, -0.05 * s.width, top + 1e-3);
   sleeper.hi = Vec3(loop.x1, 1.05 * s.width, top + 1e-3 + s.sleeper_height);
+  sleeper.edge_radius = s.sleeper_edge_radius;
   sleeper.material = box_test::with_friction(s.wall, s.friction_loading);
   const Index wall = loop.wall = sim.add_wall(sleeper);
   Servo servo;
@@ -143,7 +144,9 @@ CycleLoop seat_sleeper(const BoxTestScene& s, Simulation& sim, BoxTestResult& ou
          << out.porosity_grid_interior << ")\n";
 
   // Seat the sleeper: down to the bed until it carries the preload, then let the
-  // bed come to equilibrium under it.
+  // bed come to equilibrium under it, with the seating's own local damping if the
+  // scene gives one (a trial of docs/TRIALS.md).
+  if (s.seating_local_damping) sim.set_local_damping(*s.seating_local_damping);
   sim.prepare();
   for (long k = 0;
        k < s.max_stage_steps && sim.servos()[loop.servo].measured_force < 0.95 * preload; ++k)
@@ -151,6 +154,7 @@ CycleLoop seat_sleeper(const BoxTestScene& s, Simulation& sim, BoxTestResult& ou
   out.stages.push_back(settle(sim, "preload", s.equilibrium_ratio, s.max_stage_steps, log,
                               s.seating_creep_rule ? SettleRule::kSeated : SettleRule::kRatio,
                               [&sim, wall] { return -sim.walls()[wall].displacement.z(); }));
+  if (s.seating_local_damping) sim.set_local_damping(s.sim.local_damping);
   if (log) {
     const SleeperBearing b = sleeper_bearing(sim, wall);
     *log << "  sleeper bears on " << b.bodies << " particles (" << b.contacts

@@ -149,6 +149,10 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& given, const std::string
       refuse_with_file(top.object("preparation"), key, "/preparation");
   p.boolean("frictionless_settling", s.frictionless_settling);
   p.boolean("seating_creep_rule", s.seating_creep_rule);
+  double seating_damping = 0.0;
+  if (p.number("seating_local_damping", seating_damping, "in [0, 1)",
+               [](double v) { return v >= 0.0 && v < 1.0; }))
+    s.seating_local_damping = seating_damping;
   const bool levelling_given =
       p.number("levelling_pressure", s.levelling_pressure, "in [0, 1e6] Pa",
                [](double v) { return v >= 0.0 && v <= 1e6; });
@@ -165,6 +169,10 @@ BoxTestScene parse_box_test_scene(const nlohmann::json& given, const std::string
   sl.number("length", s.sleeper_length, "> 0 m and < the box length",
             [&](double v) { return v > 0.0 && v < s.length; });
   sl.number("height", s.sleeper_height, "> 0 m", positive);
+  sl.number("edge_radius", s.sleeper_edge_radius,
+            "in [0, half the smaller of /sleeper/length and /sleeper/height) m", [&](double v) {
+              return v >= 0.0 && 2.0 * v < std::min(s.sleeper_length, s.sleeper_height);
+            });
   sl.number("preload", s.preload, "> 0 N", positive);
   sl.number("peak_load", s.peak_load, "> preload", [&](double v) { return v > s.preload; });
   sl.number("frequency", s.frequency, "> 0 Hz", positive);

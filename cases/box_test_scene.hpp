@@ -77,12 +77,19 @@ struct BoxTestScene {
   // The seating under the preload may also end by steady creep (docs/BOX_TEST.md,
   // "Stopping rules"); false: only by equilibrium or the step limit.
   bool seating_creep_rule = true;
+  // PFC local damping while the sleeper seats under the preload (stage 4's settling);
+  // unset: numerics/local_damping, as in every stage from compaction on. The cycle
+  // runs with numerics/local_damping either way.
+  std::optional<double> seating_local_damping;
   long max_stage_steps = 400000;  // a stage that has not settled by then stops
   // sleeper: a rigid block across the full width, centred in x (the paper gives
   // no size: an assumption, docs/BOX_TEST.md)
   double sleeper_length = 0.25, sleeper_height = 0.1;  // m
-  double preload = 3e3, peak_load = 40e3;              // N
-  double frequency = 3.0;                              // Hz
+  // m: the sleeper's edges rounded to this radius (0: sharp, the paper's flat block).
+  // Only the two long lower edges touch the bed: the block spans the box's width.
+  double sleeper_edge_radius = 0.0;
+  double preload = 3e3, peak_load = 40e3;  // N
+  double frequency = 3.0;                  // Hz
   long cycles = 1;
   double sleeper_max_speed = 0.5;  // m/s, servo cap
   double sleeper_gain = 0.5;       // servo gain (engine/servo.hpp; docs/BOX_TEST.md)

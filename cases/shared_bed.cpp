@@ -6,8 +6,10 @@ namespace ballast {
 namespace {
 
 constexpr const char* kLoadingOnly[] = {
-    "/sleeper/height",    "/sleeper/max_speed", "/sleeper/peak_load",
-    "/sleeper/frequency", "/sleeper/cycles",    "/measurement",
+    "/sleeper/height",    "/sleeper/edge_radius",
+    "/sleeper/max_speed", "/sleeper/peak_load",
+    "/sleeper/frequency", "/sleeper/cycles",
+    "/measurement",       "/preparation/seating_local_damping",
 };
 
 }  // namespace

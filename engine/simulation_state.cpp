@@ -15,8 +15,8 @@ struct Bytewise<Wrench> : std::true_type {};
 
 template <class Io>
 void state_fields(Io& io, Wall& w) {
-  io(w.name, w.shape, w.point, w.normal, w.lo, w.hi, w.material, w.motion, w.velocity,
-     w.displacement);
+  io(w.name, w.shape, w.point, w.normal, w.lo, w.hi, w.edge_radius, w.material, w.motion,
+     w.velocity, w.displacement);
 }
 
 // Not target_force: a function, which the scene sets again.

@@ -64,6 +64,7 @@ std::uint64_t state_hash(const Simulation& sim) {
   for (const Wall& w : sim.walls()) {
     for (const Vec3* v : {&w.point, &w.normal, &w.lo, &w.hi, &w.velocity, &w.displacement})
       f.value(*v);
+    f.value(w.edge_radius);
   }
   for (const Servo& s : sim.servos()) {
     f.value(s.measured_force);

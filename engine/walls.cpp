@@ -13,16 +13,22 @@ WallTouch touch_wall(const Wall& w, const Vec3& x, double r) {
     const double s = w.normal.dot(x - w.point);  // signed distance of the centre
     return {r - s, w.normal, x - s * w.normal};
   }
-  // Solid box: closest point is the centre clamped into the box.
-  const Vec3 c = x.cwiseMax(w.lo).cwiseMin(w.hi);
+  // Solid box with edges rounded to re: the points within re of the core box
+  // [lo + re, hi - re]. The closest core point is the centre clamped into the core;
+  // the surface lies re beyond it. With re = 0 every term below is the sharp box's to
+  // the bit (x + 0.0 == x).
+  const double re = w.edge_radius;
+  const Vec3 core_lo = w.lo.array() + re, core_hi = w.hi.array() - re;
+  const Vec3 c = x.cwiseMax(core_lo).cwiseMin(core_hi);
   const Vec3 d = x - c;
   const double dist2 = d.squaredNorm();
   if (dist2 > 0.0) {
     const double dist = std::sqrt(dist2);
-    return {r - dist, d / dist, c};
+    const Vec3 n = d / dist;
+    return {(r + re) - dist, n, c + re * n};
   }
-  // Centre inside the box (deep penetration): push out through the nearest face.
-  const Vec3 to_lo = x - w.lo, to_hi = w.hi - x;
+  // Centre inside the core (deep penetration): push out through the nearest face.
+  const Vec3 to_lo = x - core_lo, to_hi = core_hi - x;
   int axis = 0;
   double depth = to_lo[0];
   Vec3 n = -Vec3::UnitX();
@@ -32,7 +38,7 @@ WallTouch touch_wall(const Wall& w, const Vec3& x, double r) {
   }
   Vec3 p = x;
   p[axis] = n[axis] < 0 ? w.lo[axis] : w.hi[axis];
-  return {r + depth, n, p};
+  return {(r + re) + depth, n, p};
 }
 
 void find_wall_candidates(const std::vector<Wall>& walls, const std::vector<Vec3>& positions,
@@ -87,9 +93,13 @@ void validate_wall(const Wall& w, int law) {
   if (w.shape == WallShape::Plane) {
     require_setup(std::abs(w.normal.norm() - 1.0) < 1e-9, f + "normal length", w.normal.norm(),
                   "1 (a unit vector)");
+    require_setup(w.edge_radius == 0.0, f + "edge_radius of a plane", w.edge_radius,
+                  "0 (only a box has edges)");
   } else {
-    require_setup((w.hi - w.lo).minCoeff() > 0.0, f + "box extent (hi - lo, smallest)",
-                  (w.hi - w.lo).minCoeff(), "> 0 m");
+    const double side = (w.hi - w.lo).minCoeff();
+    require_setup(side > 0.0, f + "box extent (hi - lo, smallest)", side, "> 0 m");
+    require_setup(w.edge_radius >= 0.0 && 2.0 * w.edge_radius < side, f + "edge_radius",
+                  w.edge_radius, "in [0, half the box's smallest side) m");
   }
   if (w.motion == WallMotion::Fixed)
     require_setup(w.velocity.isZero(0.0), f + "velocity of a fixed wall", w.velocity.norm(),

@@ -3,7 +3,9 @@
 //  - Plane: infinite and one-sided; `normal` points to the side where balls live.
 //  - Box: a solid axis-aligned box (the sleeper); balls stay outside it. One
 //    closest-point test per ball, so edges and corners never give double contacts
-//    (a box made of six rectangles would).
+//    (a box made of six rectangles would). Its edges and corners may be rounded
+//    (edge_radius): the box is then the points within edge_radius of a smaller core
+//    box, as a sleeper with chamfered or worn edges.
 // Each wall has its own stiffness and friction and moves with a velocity that is
 // fixed (zero), prescribed by the user, or set every step by a servo.
 #pragma once
@@ -27,6 +29,7 @@ struct Wall {
   Vec3 normal = Vec3::UnitZ();
   Vec3 lo = Vec3::Zero();
   Vec3 hi = Vec3::Zero();
+  double edge_radius = 0.0;  // m; Box only: 0 is sharp, else below half the smallest side
   Material material;
   WallMotion motion = WallMotion::Fixed;
   Vec3 velocity = Vec3::Zero();      // m/s; must stay zero while Fixed

@@ -1,7 +1,7 @@
 #!/bin/bash
 # The trials behind docs/TRIALS.md: full-scale box tests of
 # seed 1, each changing one thing in the preparation or the loading, one thread each
-# (about 2 hours on one core in all), then their table.
+# (about 3 hours on one core in all), then their table.
 #
 #   bash scripts/validation_trials.sh [DIR [NAME ...]]   (default DIR: results/trials)
 #
@@ -27,9 +27,13 @@ sph_fric spheres_settle_400k.json --set /preparation/frictionless_settling=false
 sph_base100 spheres_settle_400k.json --set /materials/base_stiffness=2.54e8
 sph_nocreep spheres_settle_400k.json --set /preparation/seating_creep_rule=false
 sph_1Hz spheres_settle_400k.json --set /sleeper/frequency=1
+sph_edge25 spheres_settle_400k.json --set /sleeper/edge_radius=0.025
+sph_seat09 spheres_settle_400k.json --set /preparation/seating_local_damping=0.9
 s1_ref sample1_settle_400k.json
 s1_free sample1_settle_400k.json --set /preparation/levelling_pressure=0 --set /particles/count=1936
 s1_fric sample1_settle_400k.json --set /preparation/frictionless_settling=false
+s1_edge25 sample1_settle_400k.json --set /sleeper/edge_radius=0.025
+s1_seat09 sample1_settle_400k.json --set /preparation/seating_local_damping=0.9
 LIST
 # What each changes:
 #   ref       the full-scale scenes with the frictionless settling stopped at
@@ -44,6 +48,10 @@ LIST
 #   base100   a base 100 times stiffer than the paper's rubber
 #   nocreep   the seating without its creep rule: equilibrium or the step limit
 #   1Hz       a slower cycle: 1 Hz instead of 3
+#   edge25    a sleeper whose long lower edges are rounded to 25 mm, about a ballast
+#             particle's radius, instead of sharp
+#   seat09    local damping 0.9 instead of 0.7 while the sleeper seats under the
+#             preload (the cycle keeps 0.7)
 
 trial() {  # trial NAME SCENE [--set KEY=VALUE ...]
   local name=$1 scene=$2

@@ -76,6 +76,11 @@ TEST(BoxTestScene, BadInputNamesPathValueAndAllowed) {
   EXPECT_NE(range.find("/sleeper/peak_load = 1000"), std::string::npos) << range;
   EXPECT_NE(range.find("> preload"), std::string::npos) << range;
 
+  const std::string edge = error_of({{"sleeper", {{"edge_radius", 0.06}}}});
+  EXPECT_NE(edge.find("/sleeper/edge_radius = 0.06"), std::string::npos) << edge;
+  EXPECT_NE(edge.find("half the smaller of /sleeper/length and /sleeper/height"), std::string::npos)
+      << edge;
+
   const std::string shape = error_of({{"particles", {{"shape", "table9/sample1"}}}});
   EXPECT_NE(shape.find("table2/sample1"), std::string::npos) << shape;  // lists the presets
 

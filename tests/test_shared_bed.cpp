@@ -38,6 +38,8 @@ std::uint64_t prepared_bed_hash(const json& scene) {
 // A valid value other than the scene's own for each loading-only field.
 const std::pair<const char*, json> kChanged[] = {
     {"/sleeper/height", 0.03},
+    {"/sleeper/edge_radius", 0.01},
+    {"/preparation/seating_local_damping", 0.9},
     {"/sleeper/max_speed", 0.25},
     {"/sleeper/peak_load", 2500.0},
     {"/sleeper/frequency", 30.0},

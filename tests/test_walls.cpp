@@ -158,6 +158,57 @@ TEST(Walls, SolidBoxTouchesAtFacesEdgesAndCorners) {
   EXPECT_NEAR(t.overlap, r + 0.02, 1e-12);
 }
 
+TEST(Walls, RoundedBoxTouchesAsItsCoreGrownByTheEdgeRadius) {
+  Wall box;
+  box.shape = WallShape::Box;
+  box.lo = Vec3(0, 0, 0);
+  box.hi = Vec3(1, 1, 1);
+  box.edge_radius = 0.2;  // core [0.2, 0.8]^3
+  const double r = 0.1;
+  // Under the middle of a face, rounding changes nothing.
+  WallTouch t = touch_wall(box, Vec3(0.5, 0.5, -0.05), r);
+  EXPECT_NEAR(t.overlap, 0.05, 1e-15);
+  EXPECT_TRUE(t.normal.isApprox(-Vec3::UnitZ()));
+  EXPECT_NEAR(t.point.z(), 0.0, 1e-15);
+  // Off the lower x-edge along the diagonal: the sharp box's edge is 0.08 from the
+  // centre (a 0.02 overlap), the rounded surface 0.08 + (√2 − 1)·0.2 = 0.163 away,
+  // so the ball no longer touches.
+  const double d = 0.08;
+  const Vec3 off_edge(-d / std::sqrt(2.0), 0.5, -d / std::sqrt(2.0));
+  t = touch_wall(box, off_edge, r);
+  EXPECT_NEAR(t.overlap, r - (d + (std::sqrt(2.0) - 1.0) * 0.2), 1e-15);
+  EXPECT_LT(t.overlap, 0.0);
+  EXPECT_TRUE(t.normal.isApprox(Vec3(-1, 0, -1).normalized()));
+  // On the rounded edge the contact lies on the cylinder of radius 0.2 about the core
+  // edge, and the normal points from that edge to the centre.
+  const Vec3 on_arc = Vec3(0.2, 0.5, 0.2) + (0.2 + 0.05) * Vec3(-1, 0, -1).normalized();
+  t = touch_wall(box, on_arc, r);
+  EXPECT_NEAR(t.overlap, 0.05, 1e-15);
+  EXPECT_NEAR((t.point - Vec3(0.2, 0.5, 0.2)).norm(), 0.2, 1e-15);
+  // Centre inside the core: out through the nearest face, the overlap counted from the
+  // outer surface.
+  t = touch_wall(box, Vec3(0.5, 0.75, 0.5), r);
+  EXPECT_TRUE(t.normal.isApprox(Vec3::UnitY()));
+  EXPECT_NEAR(t.overlap, r + 0.25, 1e-12);
+  EXPECT_NEAR(t.point.y(), 1.0, 1e-15);
+}
+
+TEST(Walls, EdgeRadiusIsRefusedOnAPlaneAndWhenItSwallowsTheBox) {
+  const Material m{1e6, 1e6, 0.3};
+  Wall plane;
+  plane.material = m;
+  plane.edge_radius = 0.01;
+  EXPECT_THROW(validate_wall(plane, 0), SetupError);
+  Wall box;
+  box.shape = WallShape::Box;
+  box.material = m;
+  box.hi = Vec3(1.0, 1.0, 0.1);
+  box.edge_radius = 0.05;  // half the smallest side: no core left
+  EXPECT_THROW(validate_wall(box, 0), SetupError);
+  box.edge_radius = 0.049;
+  EXPECT_NO_THROW(validate_wall(box, 0));
+}
+
 TEST(Walls, BoxContainerHasFiveInwardFacesWhenOpen) {
   const Material m{1e6, 1e6, 0.3};
   const auto walls = box_container(Vec3::Zero(), Vec3(0.7, 0.3, 0.45), m, m, true);

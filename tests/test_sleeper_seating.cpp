@@ -1,0 +1,82 @@
+// The two seating settings that docs/TRIALS.md tries (cases/box_test_scene.hpp):
+// /sleeper/edge_radius, a sleeper with rounded long edges, and
+// /preparation/seating_local_damping, the local damping while the sleeper seats under
+// the preload. Each loads one prepared tiny bed (40 spheres) and compares the end
+// state's bits: a setting at its neutral value changes nothing, another value changes
+// the run, and the cycle after the seating runs with the scene's own local damping.
+// The rounded box's geometry is tested in test_walls.cpp.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cases/box_test_load.hpp"
+#include "cases/box_test_prepare.hpp"
+#include "engine/state_hash.hpp"
+
+using namespace ballast;
+using nlohmann::json;
+
+namespace {
+
+json tiny_scene() {
+  return json::parse(R"({
+    "name": "tiny",
+    "particles": {"shape": "spheres", "count": 40, "diameter": 0.03625, "seed": 1},
+    "box": {"length": 0.15, "width": 0.12, "height": 0.25},
+    "preparation": {"initial_porosity": 0.5, "expansion_speed": 0.25, "gravity_factor": 10,
+                    "equilibrium_ratio": 0.02, "max_stage_steps": 10000},
+    "sleeper": {"length": 0.08, "height": 0.04, "preload": 200, "peak_load": 2000,
+                "frequency": 100, "cycles": 1, "max_speed": 0.5},
+    "measurement": {"series_every": 50}
+  })");
+}
+
+// The bed is prepared once: neither setting is read before the sleeper comes
+// (test_shared_bed.cpp checks that).
+const PreparedBed& tiny_bed() {
+  static const PreparedBed bed = prepare_box_test(parse_box_test_scene(tiny_scene()), nullptr);
+  return bed;
+}
+
+struct Loaded {
+  std::uint64_t hash;
+  double local_damping_after;  // the engine's setting once the cycle has run
+  BoxTestResult result;
+};
+
+Loaded load_with(const char* pointer, const json& value) {
+  json j = tiny_scene();
+  if (pointer) j[json::json_pointer(pointer)] = value;
+  Simulation sim = tiny_bed().sim;
+  Loaded out;
+  load_box_test(parse_box_test_scene(j), sim, out.result, nullptr);
+  out.hash = state_hash(sim);
+  out.local_damping_after = sim.settings().local_damping;
+  return out;
+}
+
+}  // namespace
+
+TEST(SleeperSeating, SeatingDampingActsOnTheSeatingAndTheCycleKeepsTheScenes) {
+  const Loaded plain = load_with(nullptr, nullptr);
+  const double scene_alpha = parse_box_test_scene(tiny_scene()).sim.local_damping;
+  ASSERT_GT(scene_alpha, 0.0);
+  // The scene's own value given explicitly: the same run to the bit.
+  EXPECT_EQ(load_with("/preparation/seating_local_damping", scene_alpha).hash, plain.hash);
+  // Undamped seating: another run, whose cycle is damped as the scene says.
+  const Loaded free = load_with("/preparation/seating_local_damping", 0.0);
+  EXPECT_NE(free.hash, plain.hash);
+  EXPECT_EQ(free.local_damping_after, scene_alpha);
+  EXPECT_EQ(plain.local_damping_after, scene_alpha);
+}
+
+TEST(SleeperSeating, ARoundedSleeperChangesTheRunAndASharpOneDoesNot) {
+  const Loaded plain = load_with(nullptr, nullptr);
+  EXPECT_EQ(load_with("/sleeper/edge_radius", 0.0).hash, plain.hash);
+  // 15 mm of a 40 mm high sleeper: the bed's top spheres under its edges meet a
+  // surface that curves away from them, so the run differs.
+  const Loaded rounded = load_with("/sleeper/edge_radius", 0.015);
+  EXPECT_NE(rounded.hash, plain.hash);
+  // Both still carry the preload and the peak through the servo.
+  EXPECT_GT(rounded.result.settlement_peak, 0.0);
+}
