@@ -7,6 +7,7 @@
 // The rounded box's geometry is tested in test_walls.cpp.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cases/box_test_load.hpp"
@@ -18,17 +19,10 @@ using nlohmann::json;
 
 namespace {
 
+// tests/data/study/tiny.json: 40 spheres, one 100 Hz cycle.
 json tiny_scene() {
-  return json::parse(R"({
-    "name": "tiny",
-    "particles": {"shape": "spheres", "count": 40, "diameter": 0.03625, "seed": 1},
-    "box": {"length": 0.15, "width": 0.12, "height": 0.25},
-    "preparation": {"initial_porosity": 0.5, "expansion_speed": 0.25, "gravity_factor": 10,
-                    "equilibrium_ratio": 0.02, "max_stage_steps": 10000},
-    "sleeper": {"length": 0.08, "height": 0.04, "preload": 200, "peak_load": 2000,
-                "frequency": 100, "cycles": 1, "max_speed": 0.5},
-    "measurement": {"series_every": 50}
-  })");
+  std::ifstream in(std::string(BALLAST_TEST_DATA) + "/study/tiny.json");
+  return json::parse(in);
 }
 
 // The bed is prepared once: neither setting is read before the sleeper comes
