@@ -6,24 +6,19 @@
 // pressure) must change it; and the key must drop exactly the loading fields.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cases/box_test_prepare.hpp"
 #include "cases/box_test_scene.hpp"
 #include "cases/shared_bed.hpp"
 #include "engine/state_hash.hpp"
+#include "tiny_scene.hpp"
 
 using namespace ballast;
 using nlohmann::json;
+using test_support::tiny_scene;
 
 namespace {
-
-// tests/data/study/tiny.json: 40 spheres, a preparation of a few thousand steps.
-json tiny_scene() {
-  std::ifstream in(std::string(BALLAST_TEST_DATA) + "/study/tiny.json");
-  return json::parse(in);
-}
 
 json changed_at(json scene, const char* field, const json& value) {
   scene[json::json_pointer(field)] = value;

@@ -7,23 +7,18 @@
 // The rounded box's geometry is tested in test_walls.cpp.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cases/box_test_load.hpp"
 #include "cases/box_test_prepare.hpp"
 #include "engine/state_hash.hpp"
+#include "tiny_scene.hpp"
 
 using namespace ballast;
 using nlohmann::json;
+using test_support::tiny_scene;
 
 namespace {
-
-// tests/data/study/tiny.json: 40 spheres, one 100 Hz cycle.
-json tiny_scene() {
-  std::ifstream in(std::string(BALLAST_TEST_DATA) + "/study/tiny.json");
-  return json::parse(in);
-}
 
 // The bed is prepared once: neither setting is read before the sleeper comes
 // (test_shared_bed.cpp checks that).
