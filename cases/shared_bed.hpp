@@ -13,9 +13,9 @@ namespace ballast {
 
 // The scene fields read only from stage 4 on (cases/box_test_load.cpp): the sleeper's
 // height, edge radius, speed limit, load and cycles, every measurement, and the local
-// damping of the seating. The sleeper's length,
-// preload and gain are not among them: the levelling plate uses the gain, and its
-// pressure defaults to the preload over the sleeper's footprint.
+// damping of the seating. The sleeper's length, preload and gain are not among them:
+// the levelling plate uses the gain, and its pressure defaults to the preload over the
+// sleeper's footprint.
 std::span<const char* const> loading_only_fields();
 
 // The scene without loading_only_fields(), as compact JSON with sorted keys.

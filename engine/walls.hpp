@@ -5,7 +5,8 @@
 //    closest-point test per ball, so edges and corners never give double contacts
 //    (a box made of six rectangles would). Its edges and corners may be rounded
 //    (edge_radius): the box is then the points within edge_radius of a smaller core
-//    box, as a sleeper with chamfered or worn edges.
+//    box, as a sleeper with chamfered or worn edges. The contact laws see every wall
+//    as flat there too (Hertz–Mindlin's radius is the ball's alone).
 // Each wall has its own stiffness and friction and moves with a velocity that is
 // fixed (zero), prescribed by the user, or set every step by a servo.
 #pragma once
